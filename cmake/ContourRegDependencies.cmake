@@ -1,0 +1,20 @@
+# Third-party packages, all from Debian (see setup.sh).
+#
+# On Debian 12, PCL's config pulls in VTK, whose config names the target MPI::MPI_C;
+# finding MPI first (C is enabled in project()) lets that resolve. Only the PCL
+# components this project links are requested.
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(MPI QUIET COMPONENTS C)
+find_package(PCL 1.10 REQUIRED COMPONENTS common search kdtree features registration io)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(ZLIB REQUIRED)
+find_package(Threads REQUIRED)
+if(CONTOUR_REG_BUILD_APPS)
+  find_package(CLI11 CONFIG REQUIRED)
+endif()
+if(BUILD_TESTING)
+  find_package(GTest REQUIRED)
+endif()
+if(CONTOUR_REG_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()

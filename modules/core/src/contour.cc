@@ -1,0 +1,91 @@
+#include "contour_reg/core/contour.h"
+
+#include <cmath>
+#include <limits>
+
+namespace contour_reg {
+
+namespace {
+
+bool fail(std::string *why, const char *message) {
+  if (why) *why = message;
+  return false;
+}
+
+bool isUsable(const Complex &point, const SegmentationParams &params) {
+  if (!isFinite(point)) return false;
+  const double range = std::abs(point);
+  return range > 0.0 && range >= params.range_min &&
+         (params.range_max <= 0.0 || range < params.range_max);
+}
+
+bool isLongEnough(const ContourSegment &segment, const SegmentationParams &params) {
+  return static_cast<int>(segment.points.size()) >= params.min_segment_points &&
+         polylineLength(segment.points) >= params.min_segment_length;
+}
+
+}  // namespace
+
+bool SegmentationParams::validate(std::string *why) const {
+  if (!(range_min >= 0.0)) return fail(why, "segmentation.range_min must be >= 0");
+  if (!(range_max >= 0.0)) return fail(why, "segmentation.range_max must be >= 0");
+  if (!(max_gap > 0.0)) return fail(why, "segmentation.max_gap must be > 0");
+  if (!(max_gap_ratio >= 0.0)) return fail(why, "segmentation.max_gap_ratio must be >= 0");
+  if (min_segment_points < 2) return fail(why, "segmentation.min_segment_points must be >= 2");
+  if (!(min_segment_length >= 0.0)) return fail(why, "segmentation.min_segment_length must be >= 0");
+  return true;
+}
+
+// Eq. (1): C(n) = r(n) cos a(n) + i r(n) sin a(n).
+ComplexSequence polarCode(const LaserScan &scan) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  ComplexSequence code(scan.ranges.size());
+  for (std::size_t n = 0; n < scan.ranges.size(); ++n) {
+    const double r = scan.ranges[n];
+    code[n] = scan.isValidRange(r) ? std::polar(r, scan.bearing(n)) : Complex(nan, nan);
+  }
+  return code;
+}
+
+// Eq. (2): y(n) = C(n+1) - C(n).
+ComplexSequence differentialCode(const ComplexSequence &points) {
+  ComplexSequence code;
+  if (points.size() < 2) return code;
+  code.reserve(points.size() - 1);
+  for (std::size_t n = 0; n + 1 < points.size(); ++n) code.push_back(points[n + 1] - points[n]);
+  return code;
+}
+
+double polylineLength(const ComplexSequence &points) {
+  double length = 0.0;
+  for (std::size_t n = 0; n + 1 < points.size(); ++n) length += std::abs(points[n + 1] - points[n]);
+  return length;
+}
+
+std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
+                                              const SegmentationParams &params) {
+  std::vector<ContourSegment> segments;
+  ContourSegment current;
+  auto close_current = [&]() {
+    if (isLongEnough(current, params)) segments.push_back(std::move(current));
+    current = ContourSegment{};
+  };
+  for (std::size_t n = 0; n < polar_code.size(); ++n) {
+    const Complex &point = polar_code[n];
+    if (!isUsable(point, params)) {
+      close_current();
+      continue;
+    }
+    if (!current.points.empty()) {
+      const Complex &previous = current.points.back();
+      const double range = std::min(std::abs(point), std::abs(previous));
+      if (std::abs(point - previous) > params.max_gap + params.max_gap_ratio * range) close_current();
+    }
+    current.points.push_back(point);
+    current.beam_indices.push_back(static_cast<int>(n));
+  }
+  close_current();
+  return segments;
+}
+
+}  // namespace contour_reg

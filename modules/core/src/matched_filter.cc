@@ -1,0 +1,97 @@
+#include "contour_reg/core/matched_filter.h"
+
+#include <cmath>
+
+namespace contour_reg {
+
+namespace {
+
+struct BankElement {
+  Complex conj_arm2;  // conj of the second arm's unit vector
+  double angle;
+  std::int8_t turn;
+};
+
+std::vector<BankElement> makeBank(const CornerFilterParams &params) {
+  std::vector<BankElement> bank;
+  for (double degrees : params.corner_angles_deg) {
+    const double angle = degrees * M_PI / 180.0;
+    const double tau = M_PI - angle;  // the turn between the arms
+    for (std::int8_t turn : {std::int8_t{1}, std::int8_t{-1}})
+      bank.push_back({std::polar(1.0, -turn * tau), angle, turn});
+  }
+  return bank;
+}
+
+}  // namespace
+
+bool CornerFilterParams::validate(std::string *why) const {
+  auto fail = [why](const char *message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (arm_elements < 2) return fail("corner_filter.arm_elements must be >= 2");
+  if (corner_angles_deg.empty()) return fail("corner_filter.corner_angles_deg must not be empty");
+  for (double a : corner_angles_deg)
+    if (!(a > 0.0 && a < 180.0)) return fail("corner_filter.corner_angles_deg must lie in (0, 180)");
+  return true;
+}
+
+ComplexSequence referenceCorner(int arm_elements, double corner_angle, int turn) {
+  ComplexSequence reference(2 * static_cast<std::size_t>(arm_elements), Complex(1.0, 0.0));
+  const Complex second_arm = std::polar(1.0, turn * (M_PI - corner_angle));
+  for (int m = arm_elements; m < 2 * arm_elements; ++m) reference[m] = second_arm;
+  return reference;
+}
+
+// Eq. (12): eta = |(G, T)| / (|G| |T|), with (A, B) = sum a(m) conj(b(m)).
+double matchedFilterOutput(const ComplexSequence &window, const ComplexSequence &reference) {
+  Complex product = 0.0;
+  double norm_g = 0.0, norm_t = 0.0;
+  for (std::size_t m = 0; m < window.size() && m < reference.size(); ++m) {
+    product += window[m] * std::conj(reference[m]);
+    norm_g += std::norm(window[m]);
+    norm_t += std::norm(reference[m]);
+  }
+  if (norm_g <= 0.0 || norm_t <= 0.0) return 0.0;
+  return std::abs(product) / std::sqrt(norm_g * norm_t);
+}
+
+CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilterParams &params) {
+  const std::size_t vertices = contour.vertices.size();
+  CornerResponse out;
+  out.response.assign(vertices, 0.0);
+  out.corner_angle.assign(vertices, M_PI);
+  out.turn.assign(vertices, 0);
+  const std::size_t s = static_cast<std::size_t>(params.arm_elements);
+  if (vertices < 2 * s + 1) return out;
+
+  // Prefix sums of |e(r)|^2 give |G(n)| in O(1).
+  std::vector<double> energy(vertices, 0.0);
+  for (std::size_t r = 0; r + 1 < vertices; ++r) energy[r + 1] = energy[r] + std::norm(contour.element(r));
+
+  const std::vector<BankElement> bank = makeBank(params);
+  const double norm_t = std::sqrt(2.0 * static_cast<double>(s));  // |T|: 2s unit vectors
+  for (std::size_t n = s; n + s < vertices; ++n) {
+    const Complex arm1 = contour.vertices[n] - contour.vertices[n - s];  // sum of the first arm's vectors
+    const Complex arm2 = contour.vertices[n + s] - contour.vertices[n];  // sum of the second arm's vectors
+    const double norm_g = std::sqrt(energy[n + s] - energy[n - s]);
+    if (norm_g <= 0.0) continue;
+    const double scale = 1.0 / (norm_g * norm_t);
+    const double eta_line = std::abs(arm1 + arm2) * scale;  // eq. (13): straight-line output
+    double best = 0.0;
+    for (const BankElement &element : bank) {
+      const double eta_corner = std::abs(arm1 + element.conj_arm2 * arm2) * scale;  // eq. (12)
+      const double c = eta_corner - eta_line;
+      if (c > best) {
+        best = c;
+        out.corner_angle[n] = element.angle;
+        out.turn[n] = element.turn;
+      }
+    }
+    out.response[n] = best;
+  }
+  return out;
+}
+
+}  // namespace contour_reg

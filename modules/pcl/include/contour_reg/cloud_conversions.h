@@ -1,0 +1,49 @@
+#pragma once
+/// @file cloud_conversions.h
+/// Between PCL clouds and the core's types.
+///
+/// A 2-D scan arrives as a pcl::PointCloud in beam order with NaN points for invalid
+/// beams (is_dense = false), as a sensor_msgs/LaserScan converts; z is ignored. A cloud
+/// without NaN points whose bearings (atan2(y, x)) do not increase along the cloud, with
+/// at most one wrap-around, is sorted by bearing first.
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include <pcl/point_cloud.h>
+#include <pcl/types.h>
+
+#include "contour_reg/core/special_points.h"
+#include "contour_reg/core/types.h"
+#include "contour_reg/point_types.h"
+
+namespace contour_reg {
+
+/// True when the bearings of `points` increase along the sequence, allowing one wrap-around.
+bool isInBearingOrder(const ComplexSequence &points);
+
+/// Sorts finite points by bearing, from -pi.
+void sortByBearing(ComplexSequence &points);
+
+/// The polar code of a cloud (or of the points named by `indices`, in that order).
+template <typename PointT>
+ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const pcl::Indices *indices = nullptr) {
+  ComplexSequence code;
+  const std::size_t count = indices ? indices->size() : cloud.size();
+  code.reserve(count);
+  bool has_invalid = false;
+  for (std::size_t k = 0; k < count; ++k) {
+    const PointT &p = cloud[indices ? static_cast<std::size_t>((*indices)[k]) : k];
+    code.emplace_back(p.x, p.y);
+    has_invalid = has_invalid || !isFinite(code.back());
+  }
+  if (!has_invalid && !isInBearingOrder(code)) sortByBearing(code);
+  return code;
+}
+
+/// Fills a PCL special point from a core special point.
+ContourCorner toContourCorner(const SpecialPoint &point);
+
+}  // namespace contour_reg

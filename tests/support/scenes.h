@@ -1,0 +1,81 @@
+#pragma once
+// Test scenes with known geometry, built on the simulation module.
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "contour_reg/core/laser_scan.h"
+#include "contour_reg/simulation/lidar.h"
+#include "contour_reg/simulation/world.h"
+
+namespace contour_reg::test {
+
+inline Eigen::Isometry2d pose2d(double x, double y, double yaw_deg) {
+  Eigen::Isometry2d pose = Eigen::Isometry2d::Identity();
+  pose.translate(Eigen::Vector2d(x, y));
+  pose.rotate(yaw_deg * M_PI / 180.0);
+  return pose;
+}
+
+/// A 11 m x 7 m room with two boxes: every corner is a 90-degree corner.
+struct RoomWithBoxes {
+  simulation::World world;
+  std::vector<Eigen::Vector2d> corners;  // world frame, all of them
+
+  RoomWithBoxes() {
+    world.addBox({-5.0, -3.0}, {6.0, 4.0});
+    world.addBox({-1.5, -2.2}, {-0.5, -1.2});
+    world.addBox({1.0, 2.0}, {2.0, 3.0});
+    corners = {{-5.0, -3.0}, {6.0, -3.0}, {6.0, 4.0}, {-5.0, 4.0}, {-1.5, -2.2}, {-0.5, -2.2},
+               {-0.5, -1.2}, {-1.5, -1.2}, {1.0, 2.0}, {2.0, 2.0}, {2.0, 3.0}, {1.0, 3.0}};
+  }
+
+  /// The corners a 270-degree sensor at `pose` sees as corners, in the sensor frame: inside
+  /// the field of view (with a margin), in line of sight, and not a silhouette edge (the
+  /// surface continues on both sides of the corner's bearing).
+  std::vector<Eigen::Vector2d> visibleCorners(const Eigen::Isometry2d &pose) const {
+    std::vector<Eigen::Vector2d> visible;
+    const double heading = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
+    for (const Eigen::Vector2d &corner : corners) {
+      const Eigen::Vector2d local = pose.inverse() * corner;
+      const double bearing = std::atan2(local.y(), local.x()), distance = local.norm();
+      if (std::abs(bearing) > 130.0 * M_PI / 180.0) continue;
+      bool seen = true;
+      for (double side : {-0.02, 0.0, 0.02}) {
+        const double a = heading + bearing + side;
+        const double hit = world.castRay(pose.translation(), {std::cos(a), std::sin(a)});
+        if (std::abs(hit - distance) > (side == 0.0 ? 0.01 : 0.3)) seen = false;
+      }
+      if (seen) visible.push_back(local);
+    }
+    return visible;
+  }
+};
+
+/// A furnished room for registration: walls with a door recess, boxes, a pillar and a
+/// round bin, so scans from anywhere in it see several corners.
+inline simulation::World furnishedRoom() {
+  simulation::World world;
+  world.addPolygon({{-6.0, -4.0}, {7.0, -4.0}, {7.0, 1.0}, {7.6, 1.0}, {7.6, 2.2}, {7.0, 2.2},
+                    {7.0, 5.0}, {-2.0, 5.0}, {-2.0, 5.8}, {-3.0, 5.8}, {-3.0, 5.0}, {-6.0, 5.0}});
+  world.addBox({-4.8, -3.2}, {-3.6, -2.4});
+  world.addBox({2.0, 2.5}, {3.4, 3.3});
+  world.addBox({4.2, -2.8}, {5.0, -1.6});
+  world.addPolygon({{-2.5, 1.5}, {-1.9, 1.5}, {-1.9, 2.1}, {-2.5, 2.1}});
+  world.addPolygon({{0.8, -1.8}, {1.6, -2.3}, {2.0, -1.7}});  // a triangular cabinet
+  world.addCircle({-4.0, 3.0}, 0.3);
+  return world;
+}
+
+inline LaserScan scanFrom(const simulation::World &world, const Eigen::Isometry2d &pose,
+                          double noise = 0.0, unsigned seed = 42) {
+  simulation::LidarModel model = simulation::LidarModel::hokuyoUtm30lx();
+  model.range_noise = noise;
+  std::mt19937 rng(seed);
+  return simulation::simulateScan(world, pose, model, rng);
+}
+
+}  // namespace contour_reg::test
