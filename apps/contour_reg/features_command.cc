@@ -1,0 +1,69 @@
+// contour_reg features: the special points of scans of a log.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "commands.h"
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/io/carmen.h"
+
+namespace contour_reg::cli {
+
+namespace {
+
+struct FeaturesOptions {
+  std::string input;
+  int scan = 0;
+  bool all = false;
+  double max_range = 40.0;
+};
+
+int runFeatures(const FeaturesOptions &options) {
+  io::CarmenOptions carmen;
+  carmen.max_range = options.max_range;
+  const io::ScanLog log = io::readCarmen(options.input, carmen);
+  for (const std::string &problem : log.report.problems) std::fprintf(stderr, "warning: %s\n", problem.c_str());
+  const int count = static_cast<int>(log.entries.size());
+  if (!options.all && (options.scan < 0 || options.scan >= count)) {
+    std::fprintf(stderr, "error: --scan %d is out of range: %s has %d scans\n", options.scan, options.input.c_str(),
+                 count);
+    return 2;
+  }
+  const int first = options.all ? 0 : options.scan, last = options.all ? count - 1 : options.scan;
+  std::printf("# scan stamp index x y corner_angle_deg orientation_deg response turn\n");
+  const ContourParams params;
+  for (int k = first; k <= last; ++k) {
+    const LaserScan &scan = log.entries[k].scan;
+    const ContourFeatures features = extractContourFeatures(scan, params);
+    int index = 0;
+    for (const SpecialPoint &p : features.special_points)
+      std::printf("%d %.6f %d %.4f %.4f %.2f %.2f %.4f %+d\n", k, scan.stamp, index++, p.position.x(),
+                  p.position.y(), p.corner_angle * 180.0 / M_PI, p.orientation * 180.0 / M_PI, p.response, p.turn);
+    if (!options.all)
+      std::fprintf(stderr, "scan %d: %zu beams, %zu segments, %zu special points\n", k, scan.ranges.size(),
+                   features.segments.size(), features.special_points.size());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void addFeaturesCommand(CLI::App &app) {
+  auto options = std::make_shared<FeaturesOptions>();
+  CLI::App *command = app.add_subcommand("features", "Print the special points (corners) of scans of a log");
+  command->add_option("input", options->input, "CARMEN log (.clf/.log, plain or .gz)")->required()->check(CLI::ExistingFile);
+  command->add_option("--scan", options->scan, "Index of the scan, in stamp order")->capture_default_str();
+  command->add_flag("--all", options->all, "Every scan of the log");
+  command->add_option("--max-range", options->max_range, "Readings at or above are no-return (m)")->capture_default_str();
+  command->callback([options]() {
+    try {
+      const int code = runFeatures(*options);
+      if (code != 0) throw CLI::RuntimeError(code);
+    } catch (const io::ReadError &error) {
+      std::fprintf(stderr, "error: %s\n", error.what());
+      throw CLI::RuntimeError(2);
+    }
+  });
+}
+
+}  // namespace contour_reg::cli

@@ -1,0 +1,49 @@
+#pragma once
+/// @file scan_log.h
+/// A log of scans with per-scan odometry, as the readers produce it.
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contour_reg/core/laser_scan.h"
+
+namespace contour_reg::io {
+
+/// A planar pose: x, y in metres, yaw in radians.
+struct Pose2D {
+  double x = 0.0, y = 0.0, yaw = 0.0;
+};
+
+/// One scan of a log and the wheel odometry at its stamp, when the log has it.
+struct LogEntry {
+  LaserScan scan;
+  std::optional<Pose2D> odometry;
+};
+
+/// What a reader met besides good lines: skipped lines are counted, the first few described.
+struct ReadReport {
+  std::size_t lines = 0;          ///< lines read
+  std::size_t skipped = 0;        ///< bad or truncated lines skipped
+  std::size_t reordered = 0;      ///< scans whose stamp went backwards in file order
+  std::vector<std::string> problems;  ///< "file:line: what", the first ones
+
+  void add(const std::string &where, std::size_t line, const std::string &what);
+};
+
+struct ScanLog {
+  std::string source;
+  std::vector<LogEntry> entries;  ///< in stamp order
+  ReadReport report;
+};
+
+/// Thrown when a file cannot be used at all (missing, unreadable, no usable scan).
+class ReadError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace contour_reg::io

@@ -1,0 +1,58 @@
+#include "contour_reg/simulation/office.h"
+
+#include <vector>
+
+namespace contour_reg::simulation {
+
+namespace {
+
+using V = Eigen::Vector2d;
+
+// A horizontal wall at height y from x0 to x1 with door gaps [d, d + width).
+void wallWithDoors(World &world, double y, double x0, double x1, const std::vector<double> &doors, double width) {
+  double x = x0;
+  for (double d : doors) {
+    world.addSegment(V(x, y), V(d, y));
+    x = d + width;
+  }
+  world.addSegment(V(x, y), V(x1, y));
+}
+
+}  // namespace
+
+World makeOfficeWorld() {
+  World world;
+  // Outer walls, with a recess at the east end of the corridor.
+  world.addPolygon({V(0, 0), V(30, 0), V(30, 6), V(31.5, 6), V(31.5, 9), V(30, 9), V(30, 16), V(0, 16)});
+  // Corridor walls with doors into the rooms.
+  wallWithDoors(world, 6.0, 0.0, 30.0, {3.0, 11.0, 19.0, 26.0}, 1.0);
+  wallWithDoors(world, 9.0, 0.0, 30.0, {5.0, 14.0, 22.0}, 1.0);
+  // Walls between rooms.
+  for (double x : {8.0, 16.0, 23.0}) world.addSegment(V(x, 0), V(x, 6));
+  for (double x : {10.0, 18.0}) world.addSegment(V(x, 9), V(x, 16));
+  // Furniture: desks, cabinets, a meeting table, an L-shaped counter.
+  world.addBox(V(1.0, 1.0), V(2.6, 1.8));
+  world.addBox(V(5.5, 3.5), V(7.2, 4.3));
+  world.addBox(V(9.5, 0.5), V(10.3, 2.5));
+  world.addBox(V(12.5, 2.0), V(14.5, 3.2));
+  world.addBox(V(17.0, 4.5), V(18.6, 5.3));
+  world.addBox(V(24.0, 1.0), V(25.2, 1.6));
+  world.addBox(V(27.5, 3.0), V(29.0, 4.5));
+  world.addBox(V(2.0, 12.0), V(4.5, 13.2));
+  world.addBox(V(7.0, 14.5), V(9.2, 15.3));
+  world.addBox(V(12.0, 11.0), V(13.0, 12.0));
+  world.addBox(V(15.5, 13.5), V(17.2, 15.0));
+  world.addPolygon({V(20.0, 12.0), V(23.0, 12.0), V(23.0, 12.6), V(20.6, 12.6), V(20.6, 14.5), V(20.0, 14.5)});
+  world.addPolygon({V(26.0, 11.0), V(27.2, 10.4), V(27.8, 11.6), V(26.6, 12.2)});  // a turned cabinet
+  // Pillars in the corridor and rooms, square and round; round bins and plants.
+  world.addBox(V(9.0, 7.2), V(9.4, 7.6));
+  world.addBox(V(20.5, 7.4), V(20.9, 7.8));
+  world.addCircle(V(15.0, 7.6), 0.25);
+  world.addCircle(V(4.0, 4.5), 0.3);
+  world.addCircle(V(20.0, 2.0), 0.4);
+  world.addCircle(V(27.0, 14.0), 0.35);
+  world.addCircle(V(6.0, 10.5), 0.2);
+  return world;
+}
+
+}  // namespace contour_reg::simulation
