@@ -1,0 +1,48 @@
+#pragma once
+/// @file refinement.h
+/// Beyond the paper: point-to-line refinement of a rigid estimate on the contours.
+///
+/// The corner vertices fix the transform to about a centimetre; the contours carry far
+/// more evidence. Starting from the RANSAC estimate, equalized source vertices are paired
+/// with the nearest target contour point found by bearing (projective search, as in
+/// PL-ICP) and the point-to-line distances are minimized by Gauss-Newton with Huber
+/// weights, the pairing distance shrinking each iteration. The update moves the pose only
+/// along directions the contours constrain: where the information matrix is degenerate
+/// (a corridor constrains nothing along its axis) the corner estimate is kept. The
+/// information matrix also gives the covariance of the estimate.
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "contour_reg/core/contour_features.h"
+
+namespace contour_reg {
+
+struct RefinementParams {
+  bool enabled = true;
+  int max_iterations = 12;
+  double max_distance = 0.3;     ///< m, pairing distance in the first iteration
+  double min_distance = 0.08;    ///< m, pairing distance it shrinks to
+  double sample_step = 0.1;      ///< m, spacing of the source samples along the contour
+  double huber = 0.03;           ///< m, Huber threshold of the point-to-line residual
+  double degeneracy_ratio = 0.02;  ///< smallest / largest eigenvalue below this is degenerate
+
+  bool validate(std::string *why = nullptr) const;
+};
+
+struct RefinementResult {
+  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
+  int pairs = 0;             ///< point-to-line pairs in the last iteration
+  double rmse = 0.0;         ///< m, point-to-line, last iteration
+  double overlap = 0.0;      ///< fraction of source samples paired in the last iteration
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw
+  bool degenerate = false;   ///< some direction of (x, y, yaw) unconstrained by the contours
+  int iterations = 0;
+};
+
+/// Refines `initial` (source to target, rigid) on the contours of two scans.
+RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
+                                  const Eigen::Matrix3d &initial, const RefinementParams &params);
+
+}  // namespace contour_reg

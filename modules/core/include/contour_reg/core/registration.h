@@ -1,0 +1,81 @@
+#pragma once
+/// @file registration.h
+/// Stages D-F in one call, plus the contour refinement: the transform that maps a
+/// source scan's contour features onto a target scan's.
+///
+/// Odometry matches each scan (source) against the previous one (target); the result
+/// maps source coordinates into the target frame, q = H p, as PCL's Registration does.
+/// "Converged" means a supported, non-degenerate estimate; otherwise `status` and
+/// `reason` say why not, and the transform is the guess (or identity).
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/correspondence.h"
+#include "contour_reg/core/ransac.h"
+#include "contour_reg/core/refinement.h"
+
+namespace contour_reg {
+
+struct RegistrationParams {
+  CorrespondenceParams correspondence;
+  RansacParams ransac;
+  RefinementParams refinement;
+  int min_special_points = 2;    ///< per scan
+  int min_inliers = 3;           ///< supporting pairs of distinct special points
+  /// Two inliers are accepted when, after refinement, at least this fraction of the
+  /// source contour lies on the target contour (0 disables).
+  double two_inlier_min_overlap = 0.6;
+  double min_inlier_spread = 0.3;  ///< m, the inlier special points must span at least this
+  /// With a guess: pairs whose target lies farther than this from the guessed position
+  /// of their source point, or whose rotation disagrees with the guess by more than
+  /// guess_max_rotation, are dropped. <= 0 ignores the guess for pairing.
+  double guess_max_distance = 0.0;
+  double guess_max_rotation = 0.5;  ///< rad
+
+  bool validate(std::string *why = nullptr) const;
+};
+
+enum class RegistrationStatus {
+  kConverged,
+  kInvalidParameters,
+  kTooFewSpecialPoints,
+  kTooFewCorrespondences,
+  kTooFewInliers,
+  kDegenerate,
+};
+
+/// A short name for a status ("converged", "too_few_special_points", ...).
+const char *toString(RegistrationStatus status);
+
+struct RegistrationResult {
+  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
+  bool converged = false;
+  RegistrationStatus status = RegistrationStatus::kTooFewSpecialPoints;
+  std::string reason;             ///< empty when converged
+  std::size_t source_points = 0;  ///< special points in the source scan
+  std::size_t target_points = 0;  ///< special points in the target scan
+  std::vector<Correspondence> candidates;  ///< candidate pairs given to RANSAC
+  std::vector<int> inliers;       ///< indices into `candidates`
+  double inlier_rmse = 0.0;       ///< m, corner vertices of the inliers
+  int ransac_iterations = 0;
+  double contour_rmse = 0.0;      ///< m, point-to-line after refinement (0 without it)
+  double overlap = 0.0;           ///< fraction of source contour paired by the refinement
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw of the estimate
+  bool degenerate = false;        ///< the contours leave some direction unconstrained
+};
+
+/// Registers `source` onto `target`. `guess` (source to target), when given, is the
+/// fallback transform; with guess_max_distance > 0 it gates the pairs, and with the
+/// rotation-dependent FragmentDistance::kReal the source fragments are turned by its yaw
+/// before comparing. With the affine model, RANSAC fits the paper's affine map; the
+/// refinement, when enabled, then refines its rigid part and that is reported.
+RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
+                                    const RegistrationParams &params, std::mt19937 &rng,
+                                    const Eigen::Matrix3d *guess = nullptr);
+
+}  // namespace contour_reg

@@ -1,0 +1,135 @@
+#include "contour_reg/core/ransac.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+namespace contour_reg {
+
+namespace {
+
+double angleDifference(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * M_PI)); }
+
+Eigen::Vector2d apply(const Eigen::Matrix3d &h, const Eigen::Vector2d &p) {
+  return h.topLeftCorner<2, 2>() * p + h.topRightCorner<2, 1>();
+}
+
+// Fits the model; an affine map must stay close to a rigid one.
+bool fit(const RansacParams &params, const Points2D &source, const Points2D &target, Eigen::Matrix3d &transform) {
+  if (params.model == TransformModel::kRigid) return estimateRigid(source, target, transform);
+  if (!estimateAffine(source, target, transform)) return false;
+  const Eigen::JacobiSVD<Eigen::Matrix2d> svd(transform.topLeftCorner<2, 2>());
+  const Eigen::Vector2d scales = svd.singularValues();
+  return transform.topLeftCorner<2, 2>().determinant() > 0.0 &&
+         std::abs(scales(0) - 1.0) <= params.max_affine_distortion &&
+         std::abs(scales(1) - 1.0) <= params.max_affine_distortion;
+}
+
+// Inliers of `transform` (|H p - q| < t) and the sum of their squared errors.
+std::vector<int> inliersOf(const Eigen::Matrix3d &transform, const Points2D &source, const Points2D &target,
+                           double threshold, double &squared_error) {
+  std::vector<int> inliers;
+  squared_error = 0.0;
+  const double t2 = threshold * threshold;
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    const double e2 = (apply(transform, source[i]) - target[i]).squaredNorm();
+    if (e2 < t2) {
+      inliers.push_back(static_cast<int>(i));
+      squared_error += e2;
+    }
+  }
+  return inliers;
+}
+
+// Draws `size` distinct indices below n.
+void drawSample(std::size_t n, std::size_t size, std::mt19937 &rng, std::vector<int> &sample) {
+  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+  sample.clear();
+  while (sample.size() < size) {
+    const int i = static_cast<int>(pick(rng));
+    if (std::find(sample.begin(), sample.end(), i) == sample.end()) sample.push_back(i);
+  }
+}
+
+}  // namespace
+
+bool RansacParams::validate(std::string *why) const {
+  auto fail = [why](const char *message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (!(inlier_threshold > 0.0)) return fail("ransac.inlier_threshold must be > 0");
+  if (max_iterations < 1) return fail("ransac.max_iterations must be >= 1");
+  if (!(confidence > 0.0 && confidence < 1.0)) return fail("ransac.confidence must lie in (0, 1)");
+  return true;
+}
+
+RansacResult ransac(const Points2D &source, const Points2D &target, const std::vector<double> &pair_rotations,
+                    const RansacParams &params, std::mt19937 &rng) {
+  RansacResult result;
+  const std::size_t sample_size = params.model == TransformModel::kRigid ? 2 : 3;
+  const std::size_t n = source.size();
+  if (n < sample_size || target.size() != n) return result;
+  const bool check_rotations = pair_rotations.size() == n && params.max_rotation_disagreement > 0.0;
+
+  std::size_t best_count = 0;
+  double best_error = std::numeric_limits<double>::infinity();
+  double needed_iterations = params.max_iterations;
+  std::vector<int> sample;
+  Points2D sample_source(sample_size), sample_target(sample_size);
+  for (int iteration = 0; iteration < params.max_iterations && iteration < needed_iterations; ++iteration) {
+    result.iterations = iteration + 1;
+    drawSample(n, sample_size, rng, sample);  // step 2: a "trial" set of pairs
+    for (std::size_t k = 0; k < sample_size; ++k) {
+      sample_source[k] = source[sample[k]];
+      sample_target[k] = target[sample[k]];
+    }
+    Eigen::Matrix3d hypothesis;
+    if (!fit(params, sample_source, sample_target, hypothesis)) continue;  // step 3
+    if (check_rotations) {
+      const double yaw = yawOf(rigidPart(hypothesis));
+      bool agree = true;
+      for (int i : sample) agree = agree && angleDifference(pair_rotations[i], yaw) <= params.max_rotation_disagreement;
+      if (!agree) continue;
+    }
+    double error = 0.0;
+    const std::vector<int> inliers = inliersOf(hypothesis, source, target, params.inlier_threshold, error);  // step 4
+    if (inliers.size() > best_count || (inliers.size() == best_count && error < best_error)) {  // step 5
+      best_count = inliers.size();
+      best_error = error;
+      result.transform = hypothesis;
+      result.inliers = inliers;
+      result.found = true;
+      const double ratio = static_cast<double>(best_count) / static_cast<double>(n);
+      const double p_good = std::pow(ratio, static_cast<double>(sample_size));
+      if (p_good >= 1.0) break;
+      needed_iterations = std::log(1.0 - params.confidence) / std::log(1.0 - std::max(p_good, 1e-12));
+    }
+  }
+  if (!result.found) return result;
+
+  // Refit on all inliers, recount, and keep the refit when it does not lose inliers.
+  for (int round = 0; round < 2; ++round) {
+    Points2D in_source, in_target;
+    for (int i : result.inliers) {
+      in_source.push_back(source[i]);
+      in_target.push_back(target[i]);
+    }
+    Eigen::Matrix3d refit;
+    if (!fit(params, in_source, in_target, refit)) break;
+    double error = 0.0;
+    std::vector<int> inliers = inliersOf(refit, source, target, params.inlier_threshold, error);
+    if (inliers.size() < result.inliers.size()) break;
+    result.transform = refit;
+    result.inliers = std::move(inliers);
+  }
+  double error = 0.0;
+  result.inliers = inliersOf(result.transform, source, target, params.inlier_threshold, error);
+  result.rmse = result.inliers.empty() ? 0.0 : std::sqrt(error / static_cast<double>(result.inliers.size()));
+  return result;
+}
+
+}  // namespace contour_reg

@@ -1,0 +1,164 @@
+#include "contour_reg/core/refinement.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "contour_reg/core/transform_estimation.h"
+
+namespace contour_reg {
+
+namespace {
+
+// Target contour points sorted by bearing, with their segment, for projective search.
+struct BearingIndex {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<int> segment;
+  std::vector<double> bearing;
+
+  explicit BearingIndex(const ContourFeatures &target) {
+    std::vector<std::pair<double, std::pair<int, int>>> order;
+    for (std::size_t k = 0; k < target.segments.size(); ++k)
+      for (std::size_t n = 0; n < target.segments[k].points.size(); ++n)
+        order.push_back({std::arg(target.segments[k].points[n]), {int(k), int(n)}});
+    std::sort(order.begin(), order.end());
+    for (const auto &[b, where] : order) {
+      points.push_back(toEigen(target.segments[where.first].points[where.second]));
+      segment.push_back(where.first);
+      bearing.push_back(b);
+    }
+  }
+
+  // Nearest point to p among those near p's bearing; -1 when none within max_distance.
+  int nearest(const Eigen::Vector2d &p, double max_distance) const {
+    if (points.empty()) return -1;
+    const double b = std::atan2(p.y(), p.x());
+    const long start = std::lower_bound(bearing.begin(), bearing.end(), b) - bearing.begin();
+    const long size = static_cast<long>(points.size());
+    int best = -1;
+    double best_d2 = max_distance * max_distance;
+    for (int direction : {-1, 1}) {  // walk outwards while it gets closer, and a few beams more
+      int worse = 0;
+      for (long j = direction < 0 ? start - 1 : start; worse < 4 && j >= 0 && j < size; j += direction) {
+        const double d2 = (points[j] - p).squaredNorm();
+        if (d2 < best_d2) {
+          best_d2 = d2;
+          best = static_cast<int>(j);
+          worse = 0;
+        } else {
+          ++worse;
+        }
+      }
+    }
+    return best;
+  }
+
+  // Unit normal of the target contour at point j, from its neighbours in the same segment.
+  bool normalAt(int j, Eigen::Vector2d &normal) const {
+    int lo = j, hi = j;
+    for (int k = 0; k < 2; ++k) {
+      if (lo > 0 && segment[lo - 1] == segment[j]) --lo;
+      if (hi + 1 < static_cast<int>(points.size()) && segment[hi + 1] == segment[j]) ++hi;
+    }
+    const Eigen::Vector2d along = points[hi] - points[lo];
+    if (hi == lo || along.norm() < 1e-6) return false;
+    normal = Eigen::Vector2d(-along.y(), along.x()).normalized();
+    return true;
+  }
+};
+
+std::vector<Eigen::Vector2d> sourceSamples(const ContourFeatures &source, double sample_step) {
+  std::vector<Eigen::Vector2d> samples;
+  for (const EqualizedContour &contour : source.contours) {
+    if (contour.vertices.empty() || contour.step <= 0.0) continue;
+    const auto stride = static_cast<std::size_t>(std::max(1.0, std::round(sample_step / contour.step)));
+    for (std::size_t r = 0; r < contour.vertices.size(); r += stride) samples.push_back(toEigen(contour.vertices[r]));
+  }
+  return samples;
+}
+
+}  // namespace
+
+bool RefinementParams::validate(std::string *why) const {
+  auto fail = [why](const char *message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (max_iterations < 0) return fail("refinement.max_iterations must be >= 0");
+  if (!(min_distance > 0.0 && max_distance >= min_distance)) return fail("refinement distances must be 0 < min <= max");
+  if (!(sample_step > 0.0)) return fail("refinement.sample_step must be > 0");
+  if (!(huber > 0.0)) return fail("refinement.huber must be > 0");
+  return true;
+}
+
+RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
+                                  const Eigen::Matrix3d &initial, const RefinementParams &params) {
+  RefinementResult result;
+  result.transform = initial;
+  const BearingIndex index(target);
+  const std::vector<Eigen::Vector2d> samples = sourceSamples(source, params.sample_step);
+  if (samples.empty() || index.points.empty()) return result;
+
+  double x = initial(0, 2), y = initial(1, 2), yaw = yawOf(initial);
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  double weighted_squares = 0.0;
+  double distance = params.max_distance;
+  for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
+    result.iterations = iteration + 1;
+    const Eigen::Rotation2Dd rotation(yaw);
+    const Eigen::Vector2d translation(x, y);
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    weighted_squares = 0.0;
+    int pairs = 0;
+    for (const Eigen::Vector2d &p : samples) {
+      const Eigen::Vector2d rotated = rotation * p;
+      const Eigen::Vector2d moved = rotated + translation;
+      const int j = index.nearest(moved, distance);
+      Eigen::Vector2d normal;
+      if (j < 0 || !index.normalAt(j, normal)) continue;
+      const double residual = normal.dot(moved - index.points[j]);
+      const double weight = std::abs(residual) <= params.huber ? 1.0 : params.huber / std::abs(residual);
+      const Eigen::Vector3d jacobian(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rotated.y(), rotated.x())));
+      h += weight * jacobian * jacobian.transpose();
+      g += weight * residual * jacobian;
+      weighted_squares += weight * residual * residual;
+      ++pairs;
+    }
+    result.pairs = pairs;
+    result.overlap = static_cast<double>(pairs) / static_cast<double>(samples.size());
+    result.rmse = pairs > 0 ? std::sqrt(weighted_squares / pairs) : 0.0;
+    information = h;
+    if (pairs < 6) break;
+    // Solve only along well-constrained directions (eigen-decomposition of the scaled H).
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(h);
+    const Eigen::Vector3d values = eigen.eigenvalues();
+    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (values(k) <= params.degeneracy_ratio * values(2)) continue;
+      const Eigen::Vector3d v = eigen.eigenvectors().col(k);
+      step -= v * (v.dot(g) / values(k));
+    }
+    x += step(0);
+    y += step(1);
+    yaw += step(2);
+    distance = std::max(params.min_distance, distance * 0.7);
+    if (step.head<2>().norm() < 1e-5 && std::abs(step(2)) < 1e-6 && distance <= params.min_distance) break;
+  }
+  result.transform = rigidTransform(x, y, yaw);
+  if (result.pairs >= 6) {
+    // Translation and rotation have different units: judge degeneracy on the translation block
+    // and on the rotation conditioned on it.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(information.topLeftCorner<2, 2>());
+    result.degenerate = translation.eigenvalues()(0) <= params.degeneracy_ratio * translation.eigenvalues()(1);
+    const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
+    if (lu.isInvertible()) result.covariance = sigma2 * lu.inverse();
+  } else {
+    result.degenerate = true;
+  }
+  return result;
+}
+
+}  // namespace contour_reg

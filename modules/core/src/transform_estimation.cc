@@ -1,0 +1,69 @@
+#include "contour_reg/core/transform_estimation.h"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+namespace contour_reg {
+
+// Eq. (17): the normal equations of x' = a x + b y + c, y' = d x + e y + f. Both rows
+// share the matrix M = sum [x y 1]^T [x y 1].
+bool estimateAffine(const Points2D &source, const Points2D &target, Eigen::Matrix3d &transform) {
+  if (source.size() < 3 || source.size() != target.size()) return false;
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs_x = Eigen::Vector3d::Zero(), rhs_y = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    const Eigen::Vector3d h(source[i].x(), source[i].y(), 1.0);
+    normal += h * h.transpose();
+    rhs_x += h * target[i].x();
+    rhs_y += h * target[i].y();
+  }
+  // Collinear points make M singular: the affine map is then undetermined.
+  Eigen::FullPivLU<Eigen::Matrix3d> lu(normal);
+  lu.setThreshold(1e-9 * std::max(1.0, normal.cwiseAbs().maxCoeff()));
+  if (lu.rank() < 3) return false;
+  transform.setIdentity();
+  transform.row(0) = lu.solve(rhs_x).transpose();
+  transform.row(1) = lu.solve(rhs_y).transpose();
+  return true;
+}
+
+bool estimateRigid(const Points2D &source, const Points2D &target, Eigen::Matrix3d &transform) {
+  if (source.size() < 2 || source.size() != target.size()) return false;
+  Eigen::Vector2d mean_p = Eigen::Vector2d::Zero(), mean_q = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    mean_p += source[i];
+    mean_q += target[i];
+  }
+  mean_p /= static_cast<double>(source.size());
+  mean_q /= static_cast<double>(source.size());
+  double dot = 0.0, cross = 0.0;
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    const Eigen::Vector2d p = source[i] - mean_p, q = target[i] - mean_q;
+    dot += p.dot(q);
+    cross += p.x() * q.y() - p.y() * q.x();
+  }
+  if (std::hypot(dot, cross) < 1e-12) return false;  // all points coincide
+  const double yaw = std::atan2(cross, dot);
+  const Eigen::Rotation2Dd rotation(yaw);
+  const Eigen::Vector2d translation = mean_q - rotation * mean_p;
+  transform = rigidTransform(translation.x(), translation.y(), yaw);
+  return true;
+}
+
+Eigen::Matrix3d rigidPart(const Eigen::Matrix3d &affine) {
+  const double yaw = std::atan2(affine(1, 0) - affine(0, 1), affine(0, 0) + affine(1, 1));
+  return rigidTransform(affine(0, 2), affine(1, 2), yaw);
+}
+
+Eigen::Matrix3d rigidTransform(double x, double y, double yaw) {
+  Eigen::Matrix3d t = Eigen::Matrix3d::Identity();
+  t.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  t(0, 2) = x;
+  t(1, 2) = y;
+  return t;
+}
+
+double yawOf(const Eigen::Matrix3d &transform) { return std::atan2(transform(1, 0), transform(0, 0)); }
+
+}  // namespace contour_reg

@@ -1,0 +1,157 @@
+#include "contour_reg/core/registration.h"
+
+#include <cmath>
+#include <random>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "contour_reg/core/transform_estimation.h"
+#include "scenes.h"
+
+namespace contour_reg {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+TEST(Correspondence, FragmentDistanceIsEquation14) {
+  const ComplexSequence g = {{1, 0}, {1, 0.1}, {0, 1}, {0.1, 1}};
+  ComplexSequence n;
+  const Complex turn = std::polar(1.0, 0.4);
+  for (const Complex &v : g) n.push_back(v * turn);
+  double rotation = 0.0;
+  // |(G, N)| form: invariant to the rotation, and arg (N, G) is the rotation.
+  EXPECT_NEAR(fragmentDistanceSquared(g, n, FragmentDistance::kModulus, &rotation), 0.0, 1e-12);
+  EXPECT_NEAR(rotation, 0.4, 1e-12);
+  // Re form: |G|^2 + |N|^2 - 2 Re (G, N) = |G - N|^2 for equal lengths.
+  double expected = 0.0;
+  for (std::size_t m = 0; m < g.size(); ++m) expected += std::norm(g[m] - n[m]);
+  EXPECT_NEAR(fragmentDistanceSquared(g, n, FragmentDistance::kReal), expected, 1e-12);
+}
+
+using Variant = std::tuple<TransformModel, FragmentDistance>;
+
+class RegistrationTest : public ::testing::TestWithParam<Variant> {
+ protected:
+  RegistrationParams params() const {
+    RegistrationParams p;
+    p.ransac.model = std::get<0>(GetParam());
+    p.correspondence.distance = std::get<1>(GetParam());
+    return p;
+  }
+
+  // Registers the scan from target_pose * motion onto the scan from target_pose, in both
+  // directions. Returns how many converged; every converged one must be within tolerance.
+  int checkMotions(double noise, double tolerance, double tolerance_deg, int trials) {
+    const simulation::World world = test::furnishedRoom();
+    std::mt19937 prng(42);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int converged = 0;
+    for (int trial = 0; trial < trials; ++trial) {
+      const Eigen::Isometry2d target_pose = test::pose2d(1.5 * u(prng), 1.0 * u(prng), 180 * u(prng));
+      const double yaw = 45 * u(prng);
+      Eigen::Vector2d shift(u(prng), u(prng));
+      if (shift.norm() > 1.0) shift.normalize();
+      const Eigen::Isometry2d motion = test::pose2d(shift.x(), shift.y(), yaw);
+      const ContourFeatures a = extractContourFeatures(test::scanFrom(world, target_pose, noise, trial), ContourParams{});
+      const ContourFeatures b =
+          extractContourFeatures(test::scanFrom(world, target_pose * motion, noise, 100 + trial), ContourParams{});
+      for (bool inverse : {false, true}) {
+        SCOPED_TRACE(testing::Message() << "trial " << trial << (inverse ? " inverse" : " forward"));
+        const Eigen::Isometry2d expected = inverse ? motion.inverse() : motion;
+        std::mt19937 rng(1);
+        const RegistrationResult r = inverse ? registerContours(a, b, params(), rng) : registerContours(b, a, params(), rng);
+        if (!r.converged) {
+          EXPECT_FALSE(r.reason.empty());
+          continue;
+        }
+        ++converged;
+        const Eigen::Matrix3d rigid = rigidPart(r.transform);
+        EXPECT_LT((rigid.topRightCorner<2, 1>() - expected.translation()).norm(), tolerance);
+        const double expected_yaw = std::atan2(expected.linear()(1, 0), expected.linear()(0, 0));
+        EXPECT_NEAR(std::remainder(yawOf(rigid) - expected_yaw, 2 * M_PI), 0.0, tolerance_deg * kDeg);
+      }
+    }
+    return converged;
+  }
+};
+
+// The share of the 2 x 10 registrations that must converge. The affine model needs four
+// supporting corners (three fit any affine map), so it converges less often; whatever
+// converges, in every variant, must be right.
+int minimumConverged(TransformModel model) { return model == TransformModel::kRigid ? 16 : 10; }
+
+TEST_P(RegistrationTest, RecoversKnownMotionsWithoutNoise) {
+  EXPECT_GE(checkMotions(0.0, 0.02, 0.5, 10), minimumConverged(std::get<0>(GetParam())));
+}
+
+TEST_P(RegistrationTest, RecoversKnownMotionsWithOneCentimetreNoise) {
+  EXPECT_GE(checkMotions(0.01, 0.05, 1.0, 10), minimumConverged(std::get<0>(GetParam())));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Variants, RegistrationTest,
+    ::testing::Combine(::testing::Values(TransformModel::kRigid, TransformModel::kAffine),
+                       ::testing::Values(FragmentDistance::kModulus, FragmentDistance::kReal)),
+    [](const ::testing::TestParamInfo<Variant> &info) {
+      return std::string(std::get<0>(info.param) == TransformModel::kRigid ? "Rigid" : "Affine") +
+             (std::get<1>(info.param) == FragmentDistance::kModulus ? "Modulus" : "Real");
+    });
+
+TEST(Registration, SameSeedGivesTheSameAnswer) {
+  const simulation::World world = test::furnishedRoom();
+  const ContourFeatures a = extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 10), 0.01, 1), ContourParams{});
+  const ContourFeatures b = extractContourFeatures(test::scanFrom(world, test::pose2d(0.5, 0.2, 30), 0.01, 2), ContourParams{});
+  std::mt19937 rng1(5), rng2(5);
+  const RegistrationResult r1 = registerContours(b, a, RegistrationParams{}, rng1);
+  const RegistrationResult r2 = registerContours(b, a, RegistrationParams{}, rng2);
+  ASSERT_TRUE(r1.converged);
+  EXPECT_EQ(r1.transform, r2.transform);
+  EXPECT_EQ(r1.inliers, r2.inliers);
+}
+
+void expectNotConverged(const simulation::World &world, const Eigen::Isometry2d &motion) {
+  const ContourFeatures a = extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1), ContourParams{});
+  const ContourFeatures b = extractContourFeatures(test::scanFrom(world, motion, 0.01, 2), ContourParams{});
+  std::mt19937 rng(1);
+  const RegistrationResult r = registerContours(b, a, RegistrationParams{}, rng);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.status, RegistrationStatus::kTooFewSpecialPoints);
+  EXPECT_NE(r.reason.find("special points"), std::string::npos) << r.reason;
+  EXPECT_TRUE(r.transform.isIdentity());
+}
+
+TEST(Registration, CorridorOfTwoParallelWallsDoesNotConverge) {
+  simulation::World corridor;
+  corridor.addSegment({-30, -1.2}, {30, -1.2});
+  corridor.addSegment({-30, 1.3}, {30, 1.3});
+  expectNotConverged(corridor, test::pose2d(0.5, 0.1, 3));
+}
+
+TEST(Registration, FeaturelessCircleDoesNotConverge) {
+  simulation::World circle;
+  const int sides = 720;  // a circle of radius 4 m as a fine polygon, seen from inside
+  std::vector<Eigen::Vector2d> ring;
+  for (int k = 0; k < sides; ++k) ring.emplace_back(4.0 * std::cos(2 * M_PI * k / sides), 4.0 * std::sin(2 * M_PI * k / sides));
+  circle.addPolygon(ring);
+  expectNotConverged(circle, test::pose2d(0.3, -0.2, 10));
+}
+
+TEST(Registration, EmptyScansDoNotConverge) {
+  std::mt19937 rng(1);
+  const RegistrationResult r = registerContours(ContourFeatures{}, ContourFeatures{}, RegistrationParams{}, rng);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.status, RegistrationStatus::kTooFewSpecialPoints);
+}
+
+TEST(Registration, InvalidParametersAreReported) {
+  RegistrationParams params;
+  params.ransac.inlier_threshold = -1.0;
+  std::mt19937 rng(1);
+  const RegistrationResult r = registerContours(ContourFeatures{}, ContourFeatures{}, params, rng);
+  EXPECT_EQ(r.status, RegistrationStatus::kInvalidParameters);
+  EXPECT_NE(r.reason.find("inlier_threshold"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace contour_reg
