@@ -28,13 +28,26 @@ ContourRegistration<PointSource, PointTarget, Scalar>::ContourRegistration() {
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void ContourRegistration<PointSource, PointTarget, Scalar>::setInputSource(const PointCloudSourceConstPtr &cloud) {
-  Base::setInputSource(cloud);
   source_ready_ = false;
+  if (cloud && cloud->empty()) {
+    // pcl::Registration would keep the previous source; align() must fail on this one instead.
+    PCL_ERROR("[contour_reg::%s::setInputSource] Empty source cloud.\n", getClassName().c_str());
+    input_ = cloud;
+    return;
+  }
+  Base::setInputSource(cloud);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void ContourRegistration<PointSource, PointTarget, Scalar>::setInputTarget(const PointCloudTargetConstPtr &cloud) {
   const bool same_as_target = target_ready_ && cloud == target_;
+  if (cloud && cloud->empty()) {
+    PCL_ERROR("[contour_reg::%s::setInputTarget] Empty target cloud.\n", getClassName().c_str());
+    target_ = cloud;
+    this->target_cloud_updated_ = true;
+    target_ready_ = false;
+    return;
+  }
   Base::setInputTarget(cloud);
   if (same_as_target) return;
   // Odometry: the new target is the cloud that was the source of the last align().
