@@ -8,5 +8,6 @@ namespace contour_reg::cli {
 
 void addFeaturesCommand(CLI::App &app);
 void addSimulateCommand(CLI::App &app);
+void addRelationsCommand(CLI::App &app);
 
 }  // namespace contour_reg::cli
