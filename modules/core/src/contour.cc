@@ -1,4 +1,5 @@
 #include "contour_reg/core/contour.h"
+#include "contour_reg/core/validation.h"
 
 #include <cmath>
 #include <limits>
@@ -6,11 +7,6 @@
 namespace contour_reg {
 
 namespace {
-
-bool fail(std::string *why, const char *message) {
-  if (why) *why = message;
-  return false;
-}
 
 bool isUsable(const Complex &point, const SegmentationParams &params) {
   if (!isFinite(point)) return false;
@@ -27,12 +23,12 @@ bool isLongEnough(const ContourSegment &segment, const SegmentationParams &param
 }  // namespace
 
 bool SegmentationParams::validate(std::string *why) const {
-  if (!(range_min >= 0.0)) return fail(why, "segmentation.range_min must be >= 0");
-  if (!(range_max >= 0.0)) return fail(why, "segmentation.range_max must be >= 0");
-  if (!(max_gap > 0.0)) return fail(why, "segmentation.max_gap must be > 0");
-  if (!(max_gap_ratio >= 0.0)) return fail(why, "segmentation.max_gap_ratio must be >= 0");
-  if (min_segment_points < 2) return fail(why, "segmentation.min_segment_points must be >= 2");
-  if (!(min_segment_length >= 0.0)) return fail(why, "segmentation.min_segment_length must be >= 0");
+  if (!(range_min >= 0.0)) return invalid(why, "segmentation.range_min must be >= 0");
+  if (!(range_max >= 0.0)) return invalid(why, "segmentation.range_max must be >= 0");
+  if (!(max_gap > 0.0)) return invalid(why, "segmentation.max_gap must be > 0");
+  if (!(max_gap_ratio >= 0.0)) return invalid(why, "segmentation.max_gap_ratio must be >= 0");
+  if (min_segment_points < 2) return invalid(why, "segmentation.min_segment_points must be >= 2");
+  if (!(min_segment_length >= 0.0)) return invalid(why, "segmentation.min_segment_length must be >= 0");
   return true;
 }
 

@@ -1,4 +1,5 @@
 #include "contour_reg/core/correspondence.h"
+#include "contour_reg/core/validation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,13 +62,9 @@ std::vector<std::vector<int>> candidateTargets(const std::vector<SpecialPoint> &
 }  // namespace
 
 bool CorrespondenceParams::validate(std::string *why) const {
-  auto fail = [why](const char *message) {
-    if (why) *why = message;
-    return false;
-  };
-  if (candidates_per_point < 1) return fail("correspondence.candidates_per_point must be >= 1");
-  if (!(ratio > 0.0 && ratio <= 1.0)) return fail("correspondence.ratio must lie in (0, 1]");
-  if (!(max_angle_difference >= 0.0)) return fail("correspondence.max_angle_difference must be >= 0");
+  if (candidates_per_point < 1) return invalid(why, "correspondence.candidates_per_point must be >= 1");
+  if (!(ratio > 0.0 && ratio <= 1.0)) return invalid(why, "correspondence.ratio must lie in (0, 1]");
+  if (!(max_angle_difference >= 0.0)) return invalid(why, "correspondence.max_angle_difference must be >= 0");
   return true;
 }
 

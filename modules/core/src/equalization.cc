@@ -1,4 +1,5 @@
 #include "contour_reg/core/equalization.h"
+#include "contour_reg/core/validation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +7,6 @@
 namespace contour_reg {
 
 namespace {
-
-bool fail(std::string *why, const char *message) {
-  if (why) *why = message;
-  return false;
-}
 
 // Resamples the polyline at arc lengths 0, step, ..., count * step (eqs. 4-11:
 // each new vertex ends a piece made of the rest of one raw vector, whole raw
@@ -31,9 +27,9 @@ EqualizedContour resample(const ComplexSequence &points, double step, std::size_
 
 bool EqualizationParams::validate(std::string *why) const {
   if (mode == EqualizationMode::kFixedStep && !(step > 0.0))
-    return fail(why, "equalization.step must be > 0");
+    return invalid(why, "equalization.step must be > 0");
   if (mode == EqualizationMode::kFixedCount && count < 1)
-    return fail(why, "equalization.count must be >= 1");
+    return invalid(why, "equalization.count must be >= 1");
   return true;
 }
 

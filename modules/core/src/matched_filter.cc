@@ -1,4 +1,5 @@
 #include "contour_reg/core/matched_filter.h"
+#include "contour_reg/core/validation.h"
 
 #include <cmath>
 
@@ -26,14 +27,10 @@ std::vector<BankElement> makeBank(const CornerFilterParams &params) {
 }  // namespace
 
 bool CornerFilterParams::validate(std::string *why) const {
-  auto fail = [why](const char *message) {
-    if (why) *why = message;
-    return false;
-  };
-  if (arm_elements < 2) return fail("corner_filter.arm_elements must be >= 2");
-  if (corner_angles_deg.empty()) return fail("corner_filter.corner_angles_deg must not be empty");
+  if (arm_elements < 2) return invalid(why, "corner_filter.arm_elements must be >= 2");
+  if (corner_angles_deg.empty()) return invalid(why, "corner_filter.corner_angles_deg must not be empty");
   for (double a : corner_angles_deg)
-    if (!(a > 0.0 && a < 180.0)) return fail("corner_filter.corner_angles_deg must lie in (0, 180)");
+    if (!(a > 0.0 && a < 180.0)) return invalid(why, "corner_filter.corner_angles_deg must lie in (0, 180)");
   return true;
 }
 

@@ -1,4 +1,5 @@
 #include "contour_reg/core/ransac.h"
+#include "contour_reg/core/validation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -57,13 +58,9 @@ void drawSample(std::size_t n, std::size_t size, std::mt19937 &rng, std::vector<
 }  // namespace
 
 bool RansacParams::validate(std::string *why) const {
-  auto fail = [why](const char *message) {
-    if (why) *why = message;
-    return false;
-  };
-  if (!(inlier_threshold > 0.0)) return fail("ransac.inlier_threshold must be > 0");
-  if (max_iterations < 1) return fail("ransac.max_iterations must be >= 1");
-  if (!(confidence > 0.0 && confidence < 1.0)) return fail("ransac.confidence must lie in (0, 1)");
+  if (!(inlier_threshold > 0.0)) return invalid(why, "ransac.inlier_threshold must be > 0");
+  if (max_iterations < 1) return invalid(why, "ransac.max_iterations must be >= 1");
+  if (!(confidence > 0.0 && confidence < 1.0)) return invalid(why, "ransac.confidence must lie in (0, 1)");
   return true;
 }
 

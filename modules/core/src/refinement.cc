@@ -1,4 +1,5 @@
 #include "contour_reg/core/refinement.h"
+#include "contour_reg/core/validation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -81,14 +82,10 @@ std::vector<Eigen::Vector2d> sourceSamples(const ContourFeatures &source, double
 }  // namespace
 
 bool RefinementParams::validate(std::string *why) const {
-  auto fail = [why](const char *message) {
-    if (why) *why = message;
-    return false;
-  };
-  if (max_iterations < 0) return fail("refinement.max_iterations must be >= 0");
-  if (!(min_distance > 0.0 && max_distance >= min_distance)) return fail("refinement distances must be 0 < min <= max");
-  if (!(sample_step > 0.0)) return fail("refinement.sample_step must be > 0");
-  if (!(huber > 0.0)) return fail("refinement.huber must be > 0");
+  if (max_iterations < 0) return invalid(why, "refinement.max_iterations must be >= 0");
+  if (!(min_distance > 0.0 && max_distance >= min_distance)) return invalid(why, "refinement distances must be 0 < min <= max");
+  if (!(sample_step > 0.0)) return invalid(why, "refinement.sample_step must be > 0");
+  if (!(huber > 0.0)) return invalid(why, "refinement.huber must be > 0");
   return true;
 }
 

@@ -1,4 +1,5 @@
 #include "contour_reg/core/special_points.h"
+#include "contour_reg/core/validation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,15 +104,11 @@ ComplexSequence fragmentAround(const EqualizedContour &contour, int vertex, int 
 }  // namespace
 
 bool SpecialPointParams::validate(std::string *why) const {
-  auto fail = [why](const char *message) {
-    if (why) *why = message;
-    return false;
-  };
-  if (!(threshold > 0.0 && threshold < 1.0)) return fail("special_points.threshold must lie in (0, 1)");
-  if (suppression_radius < 0) return fail("special_points.suppression_radius must be >= 0");
-  if (fragment_half_length < 1) return fail("special_points.fragment_half_length must be >= 1");
-  if (!(max_arm_length >= 0.0)) return fail("special_points.max_arm_length must be >= 0");
-  if (!(max_arm_rms > 0.0)) return fail("special_points.max_arm_rms must be > 0");
+  if (!(threshold > 0.0 && threshold < 1.0)) return invalid(why, "special_points.threshold must lie in (0, 1)");
+  if (suppression_radius < 0) return invalid(why, "special_points.suppression_radius must be >= 0");
+  if (fragment_half_length < 1) return invalid(why, "special_points.fragment_half_length must be >= 1");
+  if (!(max_arm_length >= 0.0)) return invalid(why, "special_points.max_arm_length must be >= 0");
+  if (!(max_arm_rms > 0.0)) return invalid(why, "special_points.max_arm_rms must be > 0");
   return true;
 }
 
