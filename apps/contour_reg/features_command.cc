@@ -55,15 +55,7 @@ void addFeaturesCommand(CLI::App &app) {
   command->add_option("--scan", options->scan, "Index of the scan, in stamp order")->capture_default_str();
   command->add_flag("--all", options->all, "Every scan of the log");
   command->add_option("--max-range", options->max_range, "Readings at or above are no-return (m)")->capture_default_str();
-  command->callback([options]() {
-    try {
-      const int code = runFeatures(*options);
-      if (code != 0) throw CLI::RuntimeError(code);
-    } catch (const io::ReadError &error) {
-      std::fprintf(stderr, "error: %s\n", error.what());
-      throw CLI::RuntimeError(2);
-    }
-  });
+  command->callback([options]() { runCommand([&] { return runFeatures(*options); }); });
 }
 
 }  // namespace contour_reg::cli

@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include <pcl/console/print.h>
+#include <pcl/filters/filter.h>
 #include <pcl/registration/icp.h>
 #include <pcl/registration/ndt_2d.h>
 #include <pcl/registration/transformation_estimation_2D.h>
@@ -43,10 +44,11 @@ Cloud::Ptr beamCloud(const LaserScan &scan) {
   return cloud;
 }
 
+// ICP and NDT need the invalid beams removed.
 Cloud::Ptr finiteCloud(const Cloud &cloud) {
   auto out = pcl::make_shared<Cloud>();
-  for (const auto &p : cloud)
-    if (std::isfinite(p.x)) out->push_back(p);
+  pcl::Indices kept;
+  pcl::removeNaNFromPointCloud(cloud, *out, kept);
   return out;
 }
 
@@ -174,14 +176,7 @@ void addRelationsCommand(CLI::App &app) {
   command->add_option("--candidates", options->candidates, "Contour: candidate targets per special point")->capture_default_str();
   command->add_option("--arm", options->arm_elements, "Contour: elements per corner arm (s)")->capture_default_str();
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
-  command->callback([options]() {
-    try {
-      if (const int code = runRelations(*options); code != 0) throw CLI::RuntimeError(code);
-    } catch (const io::ReadError &error) {
-      std::fprintf(stderr, "error: %s\n", error.what());
-      throw CLI::RuntimeError(2);
-    }
-  });
+  command->callback([options]() { runCommand([&] { return runRelations(*options); }); });
 }
 
 }  // namespace contour_reg::cli

@@ -79,14 +79,7 @@ void addSimulateCommand(CLI::App &app) {
   command->add_option("--speed", options->speed, "Robot speed (m/s)")->capture_default_str()->check(CLI::PositiveNumber);
   command->add_option("--odometry-noise", options->odometry_noise, "Relative wheel odometry noise")->capture_default_str();
   command->add_option("--seed", options->seed, "Random seed")->capture_default_str();
-  command->callback([options]() {
-    try {
-      if (const int code = runSimulate(*options); code != 0) throw CLI::RuntimeError(code);
-    } catch (const io::ReadError &error) {
-      std::fprintf(stderr, "error: %s\n", error.what());
-      throw CLI::RuntimeError(2);
-    }
-  });
+  command->callback([options]() { runCommand([&] { return runSimulate(*options); }); });
 }
 
 }  // namespace contour_reg::cli

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <pcl/console/print.h>
+#include <pcl/filters/filter.h>
 #include <pcl/registration/icp.h>
 #include <pcl/registration/ndt_2d.h>
 #include <pcl/registration/transformation_estimation_2D.h>
@@ -22,6 +23,14 @@ Cloud::Ptr toCloud(const LaserScan &scan) {
   for (const Complex &c : polarCode(scan)) cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.0f));
   cloud->is_dense = false;
   return cloud;
+}
+
+// ICP and NDT need the invalid beams removed.
+Cloud::Ptr finite(const Cloud::Ptr &cloud) {
+  auto out = pcl::make_shared<Cloud>();
+  pcl::Indices kept;
+  pcl::removeNaNFromPointCloud(*cloud, *out, kept);
+  return out;
 }
 
 // Scans of the furnished room from a target pose and from target * motion.
@@ -90,12 +99,6 @@ TEST(ContourRegistration, StandsWhereIcpAndNdtStand) {
   methods.emplace_back("ndt2d", ndt);
 
   // ICP and NDT2D need finite points; all methods get the same filtered clouds.
-  auto finite = [](const Cloud::Ptr &cloud) {
-    auto out = pcl::make_shared<Cloud>();
-    for (const auto &p : *cloud)
-      if (std::isfinite(p.x)) out->push_back(p);
-    return out;
-  };
   const Cloud::Ptr source = finite(pair.source), target = finite(pair.target);
   for (auto &[name, method] : methods) {
     SCOPED_TRACE(name);
@@ -172,12 +175,6 @@ TEST(ContourRegistration, CorridorReportsWhyItDidNotConverge) {
   EXPECT_NE(registration.getFailureReason().find("special points"), std::string::npos);
   // PCL's ICP, on the same pair, reports convergence although the corridor fixes nothing along its axis.
   pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
-  auto finite = [](const Cloud::Ptr &cloud) {
-    auto out = pcl::make_shared<Cloud>();
-    for (const auto &p : *cloud)
-      if (std::isfinite(p.x)) out->push_back(p);
-    return out;
-  };
   icp.setInputSource(finite(toCloud(test::scanFrom(corridor, test::pose2d(0.4, 0, 2), 0.01, 2))));
   icp.setInputTarget(finite(toCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1))));
   icp.align(aligned);

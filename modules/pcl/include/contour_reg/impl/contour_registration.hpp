@@ -52,7 +52,9 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::setInputTarget(const
   if (same_as_target) return;
   // Odometry: the new target is the cloud that was the source of the last align().
   if (source_ready_ && static_cast<const void *>(cloud.get()) == source_cloud_) {
-    target_features_ = source_features_;
+    std::swap(target_features_, source_features_);  // the next source is a new cloud
+    source_ready_ = false;
+    source_cloud_ = nullptr;
     target_ready_ = true;
     return;
   }
