@@ -6,7 +6,7 @@ include(CMakePackageConfigHelpers)
 # The umbrella target: everything a PCL pipeline needs.
 add_library(contour_reg INTERFACE)
 add_library(contour_reg::contour_reg ALIAS contour_reg)
-target_link_libraries(contour_reg INTERFACE contour_reg::core contour_reg::pcl)
+target_link_libraries(contour_reg INTERFACE contour_reg::core contour_reg::pcl contour_reg::io contour_reg::odometry contour_reg::evaluation)
 install(TARGETS contour_reg EXPORT contour_regTargets)
 
 set(CONTOUR_REG_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contour_reg)

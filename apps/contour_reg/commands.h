@@ -25,5 +25,8 @@ inline void runCommand(const std::function<int()> &body) {
 void addFeaturesCommand(CLI::App &app);
 void addSimulateCommand(CLI::App &app);
 void addRelationsCommand(CLI::App &app);
+void addOdometryCommand(CLI::App &app);
+void addEvaluateCommand(CLI::App &app);
+void addCompareCommand(CLI::App &app);
 
 }  // namespace contour_reg::cli

@@ -10,6 +10,9 @@ int main(int argc, char **argv) {
   app.require_subcommand(1);
   contour_reg::cli::addFeaturesCommand(app);
   contour_reg::cli::addSimulateCommand(app);
+  contour_reg::cli::addOdometryCommand(app);
+  contour_reg::cli::addEvaluateCommand(app);
+  contour_reg::cli::addCompareCommand(app);
   contour_reg::cli::addRelationsCommand(app);
   CLI11_PARSE(app, argc, argv);
   return 0;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "log_assembly.h"
 #include "text_lines.h"
 
 namespace contour_reg::io {
@@ -13,11 +14,7 @@ namespace {
 
 using detail::parseNumber;
 using Fields = std::vector<std::string_view>;
-
-struct TimedPose {
-  double stamp;
-  Pose2D pose;
-};
+using detail::TimedPose;
 
 // Reads fields [first, first + count) as numbers; false when any is missing or not a number.
 bool numbers(const Fields &fields, std::size_t first, std::size_t count, std::vector<double> &out) {
@@ -117,20 +114,6 @@ std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &e
   return {};
 }
 
-double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
-
-// Odometry at `stamp` from the sorted ODOM samples, or nothing when out of their span.
-std::optional<Pose2D> interpolate(const std::vector<TimedPose> &samples, double stamp) {
-  if (samples.empty() || stamp < samples.front().stamp || stamp > samples.back().stamp) return std::nullopt;
-  auto after = std::lower_bound(samples.begin(), samples.end(), stamp,
-                                [](const TimedPose &p, double t) { return p.stamp < t; });
-  if (after == samples.begin()) return after->pose;
-  const TimedPose &b = *after, &a = *(after - 1);
-  const double w = b.stamp > a.stamp ? (stamp - a.stamp) / (b.stamp - a.stamp) : 0.0;
-  return Pose2D{a.pose.x + w * (b.pose.x - a.pose.x), a.pose.y + w * (b.pose.y - a.pose.y),
-                a.pose.yaw + w * wrapAngle(b.pose.yaw - a.pose.yaw)};
-}
-
 }  // namespace
 
 void ReadReport::add(const std::string &where, std::size_t line, const std::string &what) {
@@ -165,14 +148,7 @@ ScanLog readCarmen(const std::string &path, const CarmenOptions &options) {
     throw ReadError(path + ": no usable scan in " + std::to_string(log.report.lines) + " lines" +
                     (log.report.problems.empty() ? "" : " (first problem: " + log.report.problems.front() + ")"));
 
-  for (std::size_t k = 1; k < log.entries.size(); ++k)
-    if (log.entries[k].scan.stamp < log.entries[k - 1].scan.stamp) ++log.report.reordered;
-  std::stable_sort(log.entries.begin(), log.entries.end(),
-                   [](const LogEntry &a, const LogEntry &b) { return a.scan.stamp < b.scan.stamp; });
-  std::stable_sort(odometry.begin(), odometry.end(),
-                   [](const TimedPose &a, const TimedPose &b) { return a.stamp < b.stamp; });
-  for (LogEntry &entry : log.entries)
-    if (!entry.odometry) entry.odometry = interpolate(odometry, entry.scan.stamp);
+  detail::finishLog(log, std::move(odometry));
   return log;
 }
 

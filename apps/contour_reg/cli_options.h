@@ -1,0 +1,79 @@
+#pragma once
+// Options several subcommands share: how to read a scan source, and the settings of the
+// registration methods.
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "contour_reg/io/read_log.h"
+#include "contour_reg/odometry/scan_matcher.h"
+
+namespace contour_reg::cli {
+
+/// --max-range, --scan-topic, --odom-topic.
+inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
+  command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m)")->capture_default_str();
+  command.add_option("--scan-topic", options.scan_topic, "Bags: sensor_msgs/LaserScan topic (default: the first)");
+  command.add_option("--odom-topic", options.odometry_topic, "Bags: nav_msgs/Odometry topic (default: the first)");
+}
+
+/// Method settings worth studying from the command line; defaults are the library's.
+struct MethodOptions {
+  double contour_step = 0.05, threshold = 0.08;
+  int candidates = 3, arm_elements = 5;
+  double icp_max_correspondence = 1.0, ndt_resolution = 1.0;
+  int iterations = 50;
+
+  odometry::MatcherSettings settings() const {
+    odometry::MatcherSettings s;
+    s.contour.equalization.step = contour_step;
+    s.contour.special_points.threshold = threshold;
+    s.contour.corner_filter.arm_elements = arm_elements;
+    s.registration.correspondence.candidates_per_point = candidates;
+    s.icp_max_correspondence = icp_max_correspondence;
+    s.icp_iterations = iterations;
+    s.ndt_resolution = ndt_resolution;
+    return s;
+  }
+};
+
+inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
+  command.add_option("--contour-step", options.contour_step, "Contour: equalized element length (m)")->capture_default_str();
+  command.add_option("--threshold", options.threshold, "Contour: corner response threshold")->capture_default_str();
+  command.add_option("--candidates", options.candidates, "Contour: candidate targets per special point")->capture_default_str();
+  command.add_option("--arm", options.arm_elements, "Contour: elements per corner arm")->capture_default_str();
+  command.add_option("--icp-max-distance", options.icp_max_correspondence, "ICP/GICP: max correspondence distance (m)")
+      ->capture_default_str();
+  command.add_option("--ndt-resolution", options.ndt_resolution, "NDT/NDT2D: cell size (m)")->capture_default_str();
+  command.add_option("--iterations", options.iterations, "ICP/GICP/NDT: max iterations")->capture_default_str();
+}
+
+/// A check that accepts the method names of odometry::methodNames().
+inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames()); }
+
+/// Prints the reader's warnings (skipped lines, the first few described) to stderr.
+void printReadReport(const io::ScanLog &log);
+
+/// Percentile q in [0, 1] of `values` (0 when empty).
+double percentile(std::vector<double> values, double q);
+
+}  // namespace contour_reg::cli
+
+namespace contour_reg::cli {
+
+/// A one-line progress bar on stderr when stderr is a terminal; silent otherwise.
+class ProgressBar {
+ public:
+  explicit ProgressBar(std::string label);
+  ~ProgressBar();
+  void operator()(std::size_t done, std::size_t total);
+
+ private:
+  std::string label_;
+  bool enabled_;
+  int shown_ = -1;
+};
+
+}  // namespace contour_reg::cli

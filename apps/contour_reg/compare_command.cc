@@ -1,0 +1,248 @@
+// contour_reg compare: several methods on the same scans, one table of accuracy and speed.
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include <pcl/console/print.h>
+
+#include "cli_options.h"
+#include "commands.h"
+#include "contour_reg/evaluation/metrics.h"
+#include "contour_reg/io/pose2d.h"
+#include "contour_reg/io/read_log.h"
+#include "contour_reg/io/trajectory.h"
+#include "contour_reg/odometry/odometry.h"
+
+namespace contour_reg::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const char *kWheelOdometry = "wheel-odometry";
+
+struct CompareOptions {
+  std::vector<std::string> inputs, ground_truths, relations;
+  std::vector<std::string> methods = {"contour", "contour+icp", "icp", "ndt2d"};
+  std::string out;
+  std::string guess = "zero";
+  bool keyframes = false;
+  unsigned jobs = 0;
+  double local_dt = 5.0;
+  io::LogReadOptions read;
+  MethodOptions method_options;
+};
+
+struct Input {
+  std::string name;  // file stem, for the table and file names
+  io::ScanLog log;
+  std::optional<io::Trajectory> ground_truth;
+  std::optional<std::vector<io::Relation>> relations;
+};
+
+struct Row {
+  std::string input, method;
+  std::size_t registrations = 0, failures = 0, degenerate = 0;
+  double median_ms = 0.0, p95_ms = 0.0;
+  evaluation::Evaluation evaluation;
+};
+
+std::string stemOf(const std::string &path) {
+  fs::path p(path);
+  while (p.has_extension() && (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" ||
+                               p.extension() == ".bag"))
+    p = p.stem();
+  return p.filename().string();
+}
+
+// A reference given on the command line (by position), or one found beside the input.
+std::string reference(const std::vector<std::string> &given, std::size_t k, const std::string &input,
+                      const std::string &suffix) {
+  if (k < given.size()) return given[k];
+  const fs::path beside = fs::path(input).parent_path() / (stemOf(input) + suffix);
+  return fs::exists(beside) ? beside.string() : std::string();
+}
+
+io::Trajectory wheelOdometry(const io::ScanLog &log) {
+  io::Trajectory trajectory;
+  std::optional<io::Pose2D> origin;
+  for (const io::LogEntry &entry : log.entries) {
+    if (!entry.odometry) continue;
+    if (!origin) origin = entry.odometry;
+    trajectory.push_back({entry.scan.stamp, io::between(*origin, *entry.odometry)});
+  }
+  return trajectory;
+}
+
+std::string cell(const std::optional<double> &value, const char *format) {
+  if (!value) return "-";
+  char text[64];
+  std::snprintf(text, sizeof text, format, *value);
+  return text;
+}
+
+void writeTables(const std::vector<Row> &rows, const CompareOptions &options) {
+  const std::string table_path = (fs::path(options.out) / "table.md").string();
+  const std::string csv_path = (fs::path(options.out) / "results.csv").string();
+  std::FILE *table = std::fopen(table_path.c_str(), "w");
+  std::FILE *csv = std::fopen(csv_path.c_str(), "w");
+  if (!table || !csv) {
+    if (table) std::fclose(table);
+    if (csv) std::fclose(csv);
+    throw io::ReadError(options.out + ": cannot write table.md / results.csv");
+  }
+  char header[512];
+  std::snprintf(header, sizeof header,
+                "| input | method | failed / registrations | local rel. transl. m | local rel. rot. deg | all rel. transl. m "
+                "| end-point %% of path | drift %% (10 m) | ATE m | median ms | p95 ms |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::string text = header;
+  std::fprintf(csv, "input,method,registrations,failures,degenerate,local_relations,local_translation_mean_m,"
+                    "local_translation_std_m,local_rotation_mean_deg,local_rotation_std_deg,all_relations,"
+                    "all_translation_mean_m,all_rotation_mean_deg,end_point_error_m,end_point_percent,drift_percent,"
+                    "ate_m,median_ms,p95_ms\n");
+  for (const Row &row : rows) {
+    const auto &e = row.evaluation;
+    auto opt = [](bool has, double v) { return has ? std::optional<double>(v) : std::nullopt; };
+    const bool rel = e.relations_local.has_value();
+    const bool gt = e.end_point.has_value();
+    const bool timed = row.method != kWheelOdometry;
+    char line[1024];
+    std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.input.c_str(),
+                  row.method.c_str(),
+                  timed ? (std::to_string(row.failures) + " / " + std::to_string(row.registrations)).c_str() : "-",
+                  rel ? (cell(e.relations_local->translation_mean, "%.3f") + " +- " +
+                         cell(e.relations_local->translation_std, "%.3f"))
+                            .c_str()
+                      : "-",
+                  cell(opt(rel, rel ? e.relations_local->rotation_mean : 0), "%.2f").c_str(),
+                  cell(opt(rel, rel ? e.relations_all->translation_mean : 0), "%.3f").c_str(),
+                  cell(opt(gt, gt ? e.end_point->percent : 0), "%.2f").c_str(),
+                  cell(opt(gt, gt ? e.drift->mean_percent : 0), "%.2f").c_str(), cell(e.ate, "%.3f").c_str(),
+                  cell(opt(timed, row.median_ms), "%.3f").c_str(), cell(opt(timed, row.p95_ms), "%.3f").c_str());
+    text += line;
+    std::fprintf(csv, "%s,%s,%zu,%zu,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%zu,%.6f,%.4f,%.6f,%.4f,%.4f,%.6f,%.4f,%.4f\n",
+                 row.input.c_str(), row.method.c_str(), row.registrations, row.failures, row.degenerate,
+                 rel ? e.relations_local->count : 0, rel ? e.relations_local->translation_mean : NAN,
+                 rel ? e.relations_local->translation_std : NAN, rel ? e.relations_local->rotation_mean : NAN,
+                 rel ? e.relations_local->rotation_std : NAN, rel ? e.relations_all->count : 0,
+                 rel ? e.relations_all->translation_mean : NAN, rel ? e.relations_all->rotation_mean : NAN,
+                 gt ? e.end_point->error : NAN, gt ? e.end_point->percent : NAN, gt ? e.drift->mean_percent : NAN,
+                 e.ate.value_or(NAN), timed ? row.median_ms : NAN, timed ? row.p95_ms : NAN);
+  }
+  std::fputs(text.c_str(), table);
+  std::fclose(table);
+  std::fclose(csv);
+  std::fputs(text.c_str(), stdout);
+  std::printf("\nwritten: %s, %s, one TUM trajectory per input and method\n", table_path.c_str(), csv_path.c_str());
+}
+
+int runCompare(const CompareOptions &options) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  std::error_code error;
+  fs::create_directories(options.out, error);
+  if (!fs::is_directory(options.out)) throw io::ReadError(options.out + ": cannot create the output folder");
+
+  std::vector<Input> inputs;
+  for (std::size_t k = 0; k < options.inputs.size(); ++k) {
+    Input input;
+    input.name = stemOf(options.inputs[k]);
+    input.log = io::readLog(options.inputs[k], options.read);
+    printReadReport(input.log);
+    if (const std::string gt = reference(options.ground_truths, k, options.inputs[k], ".gt.tum"); !gt.empty())
+      input.ground_truth = io::readTum(gt);
+    if (const std::string rel = reference(options.relations, k, options.inputs[k], ".relations"); !rel.empty())
+      input.relations = io::readRelations(rel);
+    std::fprintf(stderr, "%s: %zu scans%s%s\n", options.inputs[k].c_str(), input.log.entries.size(),
+                 input.ground_truth ? ", ground truth" : "", input.relations ? ", relations" : "");
+    inputs.push_back(std::move(input));
+  }
+
+  struct Job {
+    std::size_t input;
+    std::string method;
+  };
+  std::vector<Job> jobs;
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    for (const std::string &method : options.methods) jobs.push_back({k, method});
+  std::vector<Row> rows(jobs.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex print;
+  odometry::OdometryOptions run_options;
+  run_options.guess = options.guess == "odom"       ? odometry::GuessSource::kOdometry
+                      : options.guess == "velocity" ? odometry::GuessSource::kConstantVelocity
+                                                    : odometry::GuessSource::kZero;
+  run_options.keyframes = options.keyframes;
+  auto worker = [&]() {
+    for (std::size_t j = next++; j < jobs.size(); j = next++) {
+      const Input &input = inputs[jobs[j].input];
+      auto matcher = odometry::makeScanMatcher(jobs[j].method, options.method_options.settings());
+      const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
+      io::writeTum((fs::path(options.out) / (input.name + "." + jobs[j].method + ".tum")).string(), run.trajectory);
+      Row &row = rows[j];
+      row.input = input.name;
+      row.method = jobs[j].method;
+      row.registrations = run.stats.registrations;
+      row.failures = run.stats.failures;
+      row.degenerate = run.stats.degenerate;
+      row.median_ms = percentile(run.stats.milliseconds, 0.5);
+      row.p95_ms = percentile(run.stats.milliseconds, 0.95);
+      row.evaluation = evaluation::evaluate(run.trajectory, input.ground_truth ? &*input.ground_truth : nullptr,
+                                            input.relations ? &*input.relations : nullptr, options.local_dt);
+      std::lock_guard<std::mutex> lock(print);
+      std::fprintf(stderr, "  done: %s / %s (%zu failed)\n", input.name.c_str(), jobs[j].method.c_str(), row.failures);
+    }
+  };
+  const unsigned threads = std::max(1u, std::min<unsigned>(options.jobs ? options.jobs : std::thread::hardware_concurrency(),
+                                                           static_cast<unsigned>(jobs.size())));
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (std::thread &t : pool) t.join();
+
+  // The log's own wheel odometry, where it has it, as a baseline row.
+  for (const Input &input : inputs) {
+    const io::Trajectory wheel = wheelOdometry(input.log);
+    if (wheel.size() < 2) continue;
+    Row row;
+    row.input = input.name;
+    row.method = kWheelOdometry;
+    row.evaluation = evaluation::evaluate(wheel, input.ground_truth ? &*input.ground_truth : nullptr,
+                                          input.relations ? &*input.relations : nullptr, options.local_dt);
+    rows.push_back(row);
+  }
+  std::stable_sort(rows.begin(), rows.end(), [](const Row &a, const Row &b) { return a.input < b.input; });
+  std::printf("guess: %s; %s; %u parallel jobs; ms = registration only\n\n", options.guess.c_str(),
+              options.keyframes ? "keyframes" : "scan to scan", threads);
+  writeTables(rows, options);
+  return 0;
+}
+
+}  // namespace
+
+void addCompareCommand(CLI::App &app) {
+  auto options = std::make_shared<CompareOptions>();
+  CLI::App *command = app.add_subcommand("compare", "Run several methods on the same scans: one table of accuracy and speed");
+  command->add_option("inputs", options->inputs, "CARMEN logs, ROS bags or PCD folders")->required();
+  command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
+  command->add_option("--gt", options->ground_truths,
+                      "Ground truth TUM per input, in order (default: INPUT_STEM.gt.tum beside the input)");
+  command->add_option("--relations", options->relations,
+                      "Relations file per input, in order (default: INPUT_STEM.relations beside the input)");
+  command->add_option("--out", options->out, "Output folder")->required();
+  command->add_option("--guess", options->guess, "Initial guess: zero, odom, velocity")
+      ->check(CLI::IsMember({"zero", "odom", "velocity"}))
+      ->capture_default_str();
+  command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
+  command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");
+  command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")
+      ->capture_default_str();
+  addReadOptions(*command, options->read);
+  addMethodOptions(*command, options->method_options);
+  command->callback([options]() { runCommand([&] { return runCompare(*options); }); });
+}
+
+}  // namespace contour_reg::cli

@@ -1,0 +1,65 @@
+// contour_reg evaluate: accuracy of a TUM trajectory against ground truth or relations.
+#include <cstdio>
+#include <memory>
+
+#include "commands.h"
+#include "contour_reg/evaluation/metrics.h"
+#include "contour_reg/io/trajectory.h"
+
+namespace contour_reg::cli {
+
+namespace {
+
+struct EvaluateOptions {
+  std::string trajectory, ground_truth, relations;
+  double local_dt = 5.0;
+};
+
+int runEvaluate(const EvaluateOptions &options) {
+  const io::Trajectory estimate = io::readTum(options.trajectory);
+  io::Trajectory ground_truth;
+  std::vector<io::Relation> relations;
+  if (!options.ground_truth.empty()) ground_truth = io::readTum(options.ground_truth);
+  if (!options.relations.empty()) relations = io::readRelations(options.relations);
+  const evaluation::Evaluation e =
+      evaluation::evaluate(estimate, options.ground_truth.empty() ? nullptr : &ground_truth,
+                           options.relations.empty() ? nullptr : &relations, options.local_dt);
+  std::printf("%s: %zu poses, path %.2f m\n", options.trajectory.c_str(), estimate.size(),
+              evaluation::pathLength(estimate));
+  if (e.end_point) {
+    std::printf("end-point error: %.3f m over %.2f m of ground-truth path = %.2f %%\n", e.end_point->error,
+                e.end_point->path_length, e.end_point->percent);
+    std::printf("drift over 10 m windows: %.2f %% (%zu windows)\n", e.drift->mean_percent, e.drift->windows);
+    std::printf("ATE after SE(2) alignment: %.3f m RMSE\n", *e.ate);
+  }
+  auto print_relations = [](const char *label, const evaluation::RelationErrors &r) {
+    std::printf("relations %s: %zu (%zu not covered), translation %.4f +- %.4f m, rotation %.3f +- %.3f deg\n", label,
+                r.count, r.missing, r.translation_mean, r.translation_std, r.rotation_mean, r.rotation_std);
+  };
+  if (e.relations_all) {
+    print_relations("all", *e.relations_all);
+    char label[32];
+    std::snprintf(label, sizeof label, "local (<= %.0f s)", options.local_dt);
+    print_relations(label, *e.relations_local);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void addEvaluateCommand(CLI::App &app) {
+  auto options = std::make_shared<EvaluateOptions>();
+  CLI::App *command = app.add_subcommand("evaluate", "Accuracy of a TUM trajectory against ground truth or relations");
+  command->add_option("trajectory", options->trajectory, "Estimated trajectory (TUM)")->required()->check(CLI::ExistingFile);
+  auto *gt = command->add_option("--gt", options->ground_truth, "Ground truth (TUM)")->check(CLI::ExistingFile);
+  auto *rel = command->add_option("--relations", options->relations, "Kuemmerle et al. relations file")
+                  ->check(CLI::ExistingFile);
+  command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")
+      ->capture_default_str();
+  command->callback([options, gt, rel]() {
+    if (gt->count() == 0 && rel->count() == 0) throw CLI::ValidationError("evaluate", "give --gt or --relations");
+    runCommand([&] { return runEvaluate(*options); });
+  });
+}
+
+}  // namespace contour_reg::cli

@@ -1,0 +1,76 @@
+// contour_reg odometry: a trajectory by chaining scan registrations of one method.
+#include <cstdio>
+#include <memory>
+
+#include <pcl/console/print.h>
+
+#include "cli_options.h"
+#include "commands.h"
+#include "contour_reg/io/read_log.h"
+#include "contour_reg/io/trajectory.h"
+#include "contour_reg/odometry/odometry.h"
+
+namespace contour_reg::cli {
+
+namespace {
+
+struct OdometryCommandOptions {
+  std::string input, output, method = "contour", guess = "zero";
+  bool odom_guess = false, keyframes = false;
+  double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
+  io::LogReadOptions read;
+  MethodOptions methods;
+};
+
+odometry::GuessSource guessSource(const std::string &name) {
+  if (name == "odom") return odometry::GuessSource::kOdometry;
+  if (name == "velocity") return odometry::GuessSource::kConstantVelocity;
+  return odometry::GuessSource::kZero;
+}
+
+int runOdometryCommand(const OdometryCommandOptions &options) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const io::ScanLog log = io::readLog(options.input, options.read);
+  printReadReport(log);
+  auto matcher = odometry::makeScanMatcher(options.method, options.methods.settings());
+  odometry::OdometryOptions run_options;
+  run_options.guess = guessSource(options.odom_guess ? "odom" : options.guess);
+  run_options.keyframes = options.keyframes;
+  run_options.keyframe_distance = options.keyframe_distance;
+  run_options.keyframe_angle = options.keyframe_angle_deg * M_PI / 180.0;
+  ProgressBar progress(options.method);
+  run_options.progress = [&](std::size_t done, std::size_t total) { progress(done, total); };
+  const odometry::OdometryRun run = odometry::runOdometry(log, *matcher, run_options);
+  io::writeTum(options.output, run.trajectory);
+  std::printf("%s: %zu scans, %zu registrations by %s, %zu failed (%zu degenerate), median %.3f ms, p95 %.3f ms\n",
+              options.input.c_str(), log.entries.size(), run.stats.registrations, options.method.c_str(),
+              run.stats.failures, run.stats.degenerate, percentile(run.stats.milliseconds, 0.5),
+              percentile(run.stats.milliseconds, 0.95));
+  for (const auto &[reason, count] : run.stats.failure_reasons) std::printf("  failed: %s: %zu\n", reason.c_str(), count);
+  std::printf("trajectory: %s\n", options.output.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void addOdometryCommand(CLI::App &app) {
+  auto options = std::make_shared<OdometryCommandOptions>();
+  CLI::App *command = app.add_subcommand("odometry", "Laser odometry: chain scan registrations into a TUM trajectory");
+  command->add_option("input", options->input, "CARMEN log, ROS bag (.bag) or folder of PCD scans")->required();
+  command->add_option("--method,-m", options->method, "Registration method")->check(methodCheck())->capture_default_str();
+  command->add_option("--output,-o", options->output, "TUM trajectory to write")->required();
+  command->add_option("--guess", options->guess, "Initial guess: zero, odom (wheel odometry), velocity")
+      ->check(CLI::IsMember({"zero", "odom", "velocity"}))
+      ->capture_default_str();
+  command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
+  command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
+  command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
+      ->capture_default_str();
+  command->add_option("--keyframe-angle", options->keyframe_angle_deg, "New keyframe after this turn (deg)")
+      ->capture_default_str();
+  addReadOptions(*command, options->read);
+  addMethodOptions(*command, options->methods);
+  command->callback([options]() { runCommand([&] { return runOdometryCommand(*options); }); });
+}
+
+}  // namespace contour_reg::cli

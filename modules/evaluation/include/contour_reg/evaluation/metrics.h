@@ -1,0 +1,73 @@
+#pragma once
+/// @file metrics.h
+/// Accuracy of an estimated trajectory: the paper's end-point error over path length,
+/// drift over fixed distance windows, absolute trajectory error after SE(2) alignment,
+/// and the relation errors of Kümmerle et al. 2009.
+
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "contour_reg/io/trajectory.h"
+
+namespace contour_reg::evaluation {
+
+/// The pose of `trajectory` (stamp order) at `stamp`, interpolated between the samples
+/// around it; nothing outside its span or when those samples are more than `max_gap` s apart.
+std::optional<io::Pose2D> poseAt(const io::Trajectory &trajectory, double stamp, double max_gap = 1.0);
+
+/// Sum of the distances between consecutive positions, m.
+double pathLength(const io::Trajectory &trajectory);
+
+/// Poses of the estimate and of the reference at the estimate's stamps where both exist.
+struct Association {
+  std::vector<io::Pose2D> estimate, reference;
+  std::vector<double> stamps;
+};
+Association associate(const io::Trajectory &estimate, const io::Trajectory &reference, double max_gap = 1.0);
+
+/// The paper's metric: both trajectories start together (re-anchored at the first
+/// associated pose); the distance between their last positions over the reference path length.
+struct EndPointError {
+  double error = 0.0;        ///< m
+  double path_length = 0.0;  ///< m, of the reference over the associated span
+  double percent = 0.0;      ///< 100 * error / path_length
+};
+EndPointError endPointError(const Association &association);
+
+/// Translation drift over windows of `window` m of reference path: for every associated
+/// pose, the relative-pose translation error to the first pose `window` m further, in %.
+struct Drift {
+  double mean_percent = 0.0;
+  std::size_t windows = 0;
+};
+Drift drift(const Association &association, double window = 10.0);
+
+/// Absolute trajectory error: RMSE of positions after the rigid SE(2) alignment of the
+/// estimate onto the reference that minimises it (Umeyama without scale), m.
+double absoluteTrajectoryError(const Association &association);
+
+/// Relation errors (Kümmerle et al. 2009): for every relation (t1, t2) whose two stamps
+/// the estimate covers, the error motion (reference^-1 estimate) of the relative pose.
+struct RelationErrors {
+  std::size_t count = 0;    ///< relations evaluated
+  std::size_t missing = 0;  ///< relations the estimate does not cover
+  double translation_mean = 0.0, translation_std = 0.0;  ///< m
+  double rotation_mean = 0.0, rotation_std = 0.0;        ///< deg
+};
+RelationErrors relationErrors(const io::Trajectory &estimate, const std::vector<io::Relation> &relations,
+                              double max_dt = std::numeric_limits<double>::infinity());
+
+/// Every metric the references allow: against ground truth (end point, drift, ATE) and
+/// against relations (all of them, and the local ones with |t2 - t1| <= local_dt).
+struct Evaluation {
+  std::optional<EndPointError> end_point;
+  std::optional<Drift> drift;
+  std::optional<double> ate;
+  std::optional<RelationErrors> relations_all, relations_local;
+};
+Evaluation evaluate(const io::Trajectory &estimate, const io::Trajectory *ground_truth,
+                    const std::vector<io::Relation> *relations, double local_dt = 5.0);
+
+}  // namespace contour_reg::evaluation

@@ -1,0 +1,22 @@
+#pragma once
+/// @file read_log.h
+/// One entry point for every scan source: a CARMEN log (`.clf`, `.log`, `.gz`, anything
+/// else), a ROS 1 bag (`.bag`) or a folder of PCD scans (a directory).
+
+#include <string>
+
+#include "contour_reg/io/scan_log.h"
+
+namespace contour_reg::io {
+
+struct LogReadOptions {
+  double max_range = 40.0;           ///< m, readings at or above are no-return
+  std::size_t max_beams = 100000;    ///< scans announcing more beams are rejected
+  std::string scan_topic;            ///< bags: sensor_msgs/LaserScan topic ("": the first one)
+  std::string odometry_topic;        ///< bags: nav_msgs/Odometry topic ("": the first one)
+};
+
+/// Reads `path` with the reader its kind calls for. Throws ReadError naming the file.
+ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
+
+}  // namespace contour_reg::io

@@ -1,0 +1,55 @@
+#pragma once
+/// @file odometry.h
+/// Laser odometry: chains scan registrations into a trajectory, either scan to scan or
+/// against keyframes (laser_scan_matcher's scheme: match against the last keyframe, take
+/// a new one after enough motion or a failed match).
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "contour_reg/io/scan_log.h"
+#include "contour_reg/io/trajectory.h"
+#include "contour_reg/odometry/scan_matcher.h"
+
+namespace contour_reg::odometry {
+
+/// Where the initial guess of each registration comes from.
+enum class GuessSource {
+  kZero,              ///< no motion since the previous scan
+  kOdometry,          ///< the log's wheel odometry between the two scans
+  kConstantVelocity,  ///< the previous motion, scaled by the time between scans
+};
+
+struct OdometryOptions {
+  GuessSource guess = GuessSource::kZero;
+  bool keyframes = false;
+  double keyframe_distance = 0.3;  ///< m of motion from the keyframe that starts a new one
+  double keyframe_angle = 0.2;     ///< rad of turn from the keyframe that starts a new one
+  /// Called after every scan with (scans done, scans in all).
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+struct OdometryStats {
+  std::size_t registrations = 0;
+  std::size_t failures = 0;      ///< not converged (degenerate ones included)
+  std::size_t degenerate = 0;    ///< of the failures, those the method flagged degenerate
+  std::vector<double> milliseconds;                  ///< per registration
+  std::map<std::string, std::size_t> failure_reasons;  ///< MatchResult::status -> count
+  std::vector<std::size_t> failed_scans;             ///< scan indices whose registration failed
+};
+
+struct OdometryRun {
+  io::Trajectory trajectory;  ///< one pose per scan, the first at the origin
+  OdometryStats stats;
+};
+
+/// Runs odometry over `log` with `matcher`. A failed registration is never chained: the
+/// scan's pose comes from the wheel odometry when the log has it and the guess source is
+/// kOdometry, otherwise from the previous motion (constant velocity); it is counted in
+/// the stats.
+OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const OdometryOptions &options = {});
+
+}  // namespace contour_reg::odometry

@@ -1,0 +1,89 @@
+#pragma once
+/// @file scan_matcher.h
+/// Registration methods by name, behind one interface that takes LaserScans: the
+/// contour method, PCL's ICP, NDT2D, NDT and GICP, and contour followed by ICP. Every
+/// method sees the same scans and the same guess; each gets the cloud form it needs
+/// (beam order with NaN beams for the contour method, finite points for the others).
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/registration/registration.h>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/laser_scan.h"
+#include "contour_reg/core/registration.h"
+
+namespace contour_reg::odometry {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+using Registration = pcl::Registration<pcl::PointXYZ, pcl::PointXYZ>;
+
+/// The outcome of one registration. `transform` maps the source scan into the target
+/// scan's frame (the source sensor pose seen from the target sensor).
+struct MatchResult {
+  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();
+  bool converged = false;
+  bool degenerate = false;
+  std::string status;          ///< short failure class ("too_few_special_points", "not_converged"); "" when converged
+  std::string reason;          ///< why not converged, in words ("" when converged)
+  double milliseconds = 0.0;   ///< registration only (features of new scans included)
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw; zero when the method gives none
+};
+
+/// Settings of the methods that are worth changing from the command line.
+struct MatcherSettings {
+  ContourParams contour;
+  RegistrationParams registration;
+  double icp_max_correspondence = 1.0;  ///< m, ICP and GICP
+  int icp_iterations = 50;
+  double ndt_resolution = 1.0;  ///< m, NDT cell size and NDT2D grid step
+  double ndt_extent = 80.0;     ///< m, NDT2D grid extent around the target origin
+};
+
+/// The method names makeScanMatcher knows: contour, icp, ndt2d, ndt, gicp, contour+icp.
+const std::vector<std::string> &methodNames();
+
+/// The beam-order cloud of a scan, NaN points for invalid beams (is_dense = false).
+Cloud::Ptr beamCloud(const LaserScan &scan);
+
+/// Registers scans with one method. Consecutive calls that reuse a scan (the previous
+/// source as the next target, or the same target) reuse its cloud, so methods that cache
+/// per cloud (ContourRegistration's features, ICP's kd-tree) do so.
+class ScanMatcher {
+ public:
+  ScanMatcher(std::string name, Registration::Ptr registration, bool wants_beam_order);
+
+  const std::string &name() const { return name_; }
+  Registration &registration() { return *registration_; }
+
+  /// Registers `source` onto `target` from `guess` (source to target).
+  MatchResult match(const LaserScan &target, const LaserScan &source,
+                    const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity());
+
+ private:
+  // A scan is known by its address, its range buffer and its stamp.
+  struct ScanKey {
+    const LaserScan *scan = nullptr;
+    const float *ranges = nullptr;
+    double stamp = 0.0;
+    bool operator==(const ScanKey &o) const { return scan == o.scan && ranges == o.ranges && stamp == o.stamp; }
+  };
+  static ScanKey keyOf(const LaserScan &scan) { return {&scan, scan.ranges.data(), scan.stamp}; }
+  Cloud::Ptr cloudFor(const LaserScan &scan);
+
+  std::string name_;
+  Registration::Ptr registration_;
+  bool wants_beam_order_;
+  ScanKey source_key_, target_key_;
+  Cloud::Ptr source_cloud_, target_cloud_;
+};
+
+/// A matcher for `method` (see methodNames()); nullptr for an unknown name.
+std::unique_ptr<ScanMatcher> makeScanMatcher(const std::string &method, const MatcherSettings &settings = {});
+
+}  // namespace contour_reg::odometry

@@ -1,0 +1,79 @@
+#include "contour_reg/odometry/odometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contour_reg/io/pose2d.h"
+
+namespace contour_reg::odometry {
+
+using io::between;
+using io::compose;
+using io::scaled;
+using io::toMatrix;
+using io::toPose;
+
+namespace {
+
+// Wheel odometry between scans a and b of the log, when both have it.
+std::optional<io::Pose2D> wheelMotion(const io::LogEntry &a, const io::LogEntry &b) {
+  if (!a.odometry || !b.odometry) return std::nullopt;
+  return between(*a.odometry, *b.odometry);
+}
+
+}  // namespace
+
+OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const OdometryOptions &options) {
+  OdometryRun run;
+  const auto &entries = log.entries;
+  if (entries.empty()) return run;
+  std::vector<io::Pose2D> poses{io::Pose2D{}};
+  run.trajectory.push_back({entries[0].scan.stamp, poses[0]});
+  io::Pose2D velocity_motion{};  // last scan-to-scan motion
+  double velocity_dt = 0.0;
+  std::size_t keyframe = 0;
+  for (std::size_t k = 1; k < entries.size(); ++k) {
+    const std::size_t reference = options.keyframes ? keyframe : k - 1;
+    const io::Pose2D previous = poses[k - 1];
+    const double dt = entries[k].scan.stamp - entries[k - 1].scan.stamp;
+
+    // Where the scan is expected, by constant velocity and by wheel odometry.
+    // The previous motion scaled to this interval; no prediction across stamp jumps.
+    const double velocity_scale = velocity_dt > 1e-3 ? std::clamp(dt / velocity_dt, 0.0, 3.0) : 0.0;
+    const io::Pose2D by_velocity = compose(previous, scaled(velocity_motion, velocity_scale));
+    const auto wheel = wheelMotion(entries[k - 1], entries[k]);
+    io::Pose2D expected = previous;
+    if (options.guess == GuessSource::kOdometry && wheel) expected = compose(previous, *wheel);
+    if (options.guess == GuessSource::kConstantVelocity) expected = by_velocity;
+
+    const io::Pose2D guess = between(poses[reference], expected);
+    const MatchResult match = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess));
+    ++run.stats.registrations;
+    run.stats.milliseconds.push_back(match.milliseconds);
+    io::Pose2D pose;
+    if (match.converged) {
+      pose = compose(poses[reference], toPose(match.transform));
+    } else {
+      ++run.stats.failures;
+      run.stats.degenerate += match.degenerate;
+      ++run.stats.failure_reasons[match.status];
+      run.stats.failed_scans.push_back(k);
+      pose = (options.guess == GuessSource::kOdometry && wheel) ? compose(previous, *wheel) : by_velocity;
+    }
+    poses.push_back(pose);
+    run.trajectory.push_back({entries[k].scan.stamp, pose});
+    velocity_motion = between(previous, pose);
+    velocity_dt = dt;
+
+    if (options.keyframes) {
+      const io::Pose2D from_keyframe = between(poses[keyframe], pose);
+      if (!match.converged || std::hypot(from_keyframe.x, from_keyframe.y) >= options.keyframe_distance ||
+          std::abs(from_keyframe.yaw) >= options.keyframe_angle)
+        keyframe = k;
+    }
+    if (options.progress) options.progress(k + 1, entries.size());
+  }
+  return run;
+}
+
+}  // namespace contour_reg::odometry

@@ -1,0 +1,174 @@
+#include "contour_reg/odometry/scan_matcher.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <pcl/filters/filter.h>
+#include <pcl/registration/gicp.h>
+#include <pcl/registration/icp.h>
+#include <pcl/registration/ndt.h>
+#include <pcl/registration/ndt_2d.h>
+#include <pcl/registration/transformation_estimation_2D.h>
+
+#include "contour_reg/coarse_to_fine_registration.h"
+#include "contour_reg/contour_registration.h"
+#include "contour_reg/core/contour.h"
+
+namespace contour_reg::odometry {
+
+namespace {
+
+using Contour = ContourRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+using CoarseToFine = CoarseToFineRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+
+Registration::Ptr makeContour(const MatcherSettings &settings) {
+  auto contour = pcl::make_shared<Contour>();
+  contour->setContourParams(settings.contour);
+  contour->setRegistrationParams(settings.registration);
+  return contour;
+}
+
+Registration::Ptr makeIcp(const MatcherSettings &settings) {
+  auto icp = pcl::make_shared<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>>();
+  icp->setTransformationEstimation(
+      pcl::make_shared<pcl::registration::TransformationEstimation2D<pcl::PointXYZ, pcl::PointXYZ>>());
+  icp->setMaxCorrespondenceDistance(settings.icp_max_correspondence);
+  icp->setMaximumIterations(settings.icp_iterations);
+  icp->setTransformationEpsilon(1e-8);
+  icp->setEuclideanFitnessEpsilon(1e-8);
+  return icp;
+}
+
+Registration::Ptr makeNdt2d(const MatcherSettings &settings) {
+  auto ndt = pcl::make_shared<pcl::NormalDistributionsTransform2D<pcl::PointXYZ, pcl::PointXYZ>>();
+  ndt->setGridCentre(Eigen::Vector2f(0, 0));
+  ndt->setGridExtent(Eigen::Vector2f(float(settings.ndt_extent), float(settings.ndt_extent)));
+  ndt->setGridStep(Eigen::Vector2f(float(settings.ndt_resolution), float(settings.ndt_resolution)));
+  ndt->setMaximumIterations(settings.icp_iterations);
+  ndt->setTransformationEpsilon(1e-6);
+  return ndt;
+}
+
+Registration::Ptr makeNdt(const MatcherSettings &settings) {
+  auto ndt = pcl::make_shared<pcl::NormalDistributionsTransform<pcl::PointXYZ, pcl::PointXYZ>>();
+  ndt->setResolution(float(settings.ndt_resolution));
+  ndt->setStepSize(0.1);
+  ndt->setMaximumIterations(settings.icp_iterations);
+  ndt->setTransformationEpsilon(1e-4);
+  return ndt;
+}
+
+Registration::Ptr makeGicp(const MatcherSettings &settings) {
+  auto gicp = pcl::make_shared<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>>();
+  gicp->setMaxCorrespondenceDistance(settings.icp_max_correspondence);
+  gicp->setMaximumIterations(settings.icp_iterations);
+  gicp->setTransformationEpsilon(1e-8);
+  return gicp;
+}
+
+Registration::Ptr makeContourIcp(const MatcherSettings &settings) {
+  auto composed = pcl::make_shared<CoarseToFine>();
+  composed->setCoarseStage(makeContour(settings));
+  return composed;
+}
+
+Eigen::Matrix4f toMatrix4(const Eigen::Matrix3d &planar) {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.topLeftCorner<2, 2>() = planar.topLeftCorner<2, 2>().cast<float>();
+  m.block<2, 1>(0, 3) = planar.topRightCorner<2, 1>().cast<float>();
+  return m;
+}
+
+// The planar part of a 4x4 transform, re-orthonormalized by its yaw.
+Eigen::Matrix3d toPlanar(const Eigen::Matrix4f &m) {
+  const double yaw = std::atan2(double(m(1, 0)), double(m(0, 0)));
+  Eigen::Matrix3d t = Eigen::Matrix3d::Identity();
+  t(0, 0) = t(1, 1) = std::cos(yaw);
+  t(1, 0) = std::sin(yaw);
+  t(0, 1) = -t(1, 0);
+  t(0, 2) = m(0, 3);
+  t(1, 2) = m(1, 3);
+  return t;
+}
+
+const Contour *contourStage(Registration &registration) {
+  if (auto *contour = dynamic_cast<Contour *>(&registration)) return contour;
+  if (auto *composed = dynamic_cast<CoarseToFine *>(&registration))
+    return dynamic_cast<const Contour *>(composed->getCoarseStage().get());
+  return nullptr;
+}
+
+}  // namespace
+
+const std::vector<std::string> &methodNames() {
+  static const std::vector<std::string> names{"contour", "icp", "ndt2d", "ndt", "gicp", "contour+icp"};
+  return names;
+}
+
+Cloud::Ptr beamCloud(const LaserScan &scan) {
+  auto cloud = pcl::make_shared<Cloud>();
+  for (const Complex &c : polarCode(scan)) cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
+  cloud->is_dense = false;
+  return cloud;
+}
+
+ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool wants_beam_order)
+    : name_(std::move(name)), registration_(std::move(registration)), wants_beam_order_(wants_beam_order) {}
+
+Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan) {
+  Cloud::Ptr cloud = beamCloud(scan);
+  if (wants_beam_order_) return cloud;
+  auto finite = pcl::make_shared<Cloud>();
+  pcl::Indices kept;
+  pcl::removeNaNFromPointCloud(*cloud, *finite, kept);
+  return finite;
+}
+
+MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess) {
+  if (!(keyOf(target) == target_key_)) {
+    target_cloud_ = (keyOf(target) == source_key_) ? source_cloud_ : cloudFor(target);
+    target_key_ = keyOf(target);
+  }
+  if (!(keyOf(source) == source_key_)) {
+    source_cloud_ = cloudFor(source);
+    source_key_ = keyOf(source);
+  }
+  MatchResult result;
+  Cloud aligned;
+  const auto start = std::chrono::steady_clock::now();
+  registration_->setInputTarget(target_cloud_);
+  registration_->setInputSource(source_cloud_);
+  if (target_cloud_->empty() || source_cloud_->empty()) {
+    result.transform = guess;
+    result.reason = target_cloud_->empty() ? "target scan has no valid beam" : "source scan has no valid beam";
+    result.status = "empty_scan";
+    return result;
+  }
+  registration_->align(aligned, toMatrix4(guess));
+  result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.converged = registration_->hasConverged();
+  result.transform = result.converged ? toPlanar(registration_->getFinalTransformation()) : guess;
+  if (const Contour *contour = contourStage(*registration_)) {
+    result.degenerate = contour->isDegenerate();
+    result.covariance = contour->getCovariance();
+    if (!contour->hasConverged()) {
+      result.reason = contour->getFailureReason();
+      result.status = toString(contour->getResult().status);
+    }
+  }
+  if (!result.converged && result.reason.empty()) result.reason = name_ + " did not converge";
+  if (!result.converged && result.status.empty()) result.status = "not_converged";
+  return result;
+}
+
+std::unique_ptr<ScanMatcher> makeScanMatcher(const std::string &method, const MatcherSettings &settings) {
+  if (method == "contour") return std::make_unique<ScanMatcher>(method, makeContour(settings), true);
+  if (method == "contour+icp") return std::make_unique<ScanMatcher>(method, makeContourIcp(settings), true);
+  if (method == "icp") return std::make_unique<ScanMatcher>(method, makeIcp(settings), false);
+  if (method == "ndt2d") return std::make_unique<ScanMatcher>(method, makeNdt2d(settings), false);
+  if (method == "ndt") return std::make_unique<ScanMatcher>(method, makeNdt(settings), false);
+  if (method == "gicp") return std::make_unique<ScanMatcher>(method, makeGicp(settings), false);
+  return nullptr;
+}
+
+}  // namespace contour_reg::odometry
