@@ -148,7 +148,9 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
     // Translation and rotation have different units: judge degeneracy on the translation block
     // and on the rotation conditioned on it.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(information.topLeftCorner<2, 2>());
-    result.degenerate = translation.eigenvalues()(0) <= params.degeneracy_ratio * translation.eigenvalues()(1);
+    result.constraint_ratio = translation.eigenvalues()(1) > 0.0
+                                  ? translation.eigenvalues()(0) / translation.eigenvalues()(1) : 0.0;
+    result.degenerate = result.constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
     if (lu.isInvertible()) result.covariance = sigma2 * lu.inverse();

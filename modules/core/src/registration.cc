@@ -60,8 +60,11 @@ const char *toString(RegistrationStatus status) {
   return "unknown";
 }
 
-RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
-                                    const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess) {
+namespace {
+
+// Stages D-F and the refinement, from the corners.
+RegistrationResult registerByCorners(const ContourFeatures &source, const ContourFeatures &target,
+                                     const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess) {
   RegistrationResult result;
   if (guess) result.transform = *guess;
   std::string why;
@@ -155,6 +158,43 @@ RegistrationResult registerContours(const ContourFeatures &source, const Contour
   result.converged = true;
   result.status = RegistrationStatus::kConverged;
   result.reason.clear();
+  return result;
+}
+
+// Few corners: the guess refined on the contours, kept when well supported.
+void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
+                      const Eigen::Matrix3d *guess, RegistrationResult &result) {
+  const Eigen::Matrix3d start = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
+  const RefinementResult refined = refineOnContours(source, target, start, params.refinement);
+  const bool weak = refined.degenerate || refined.constraint_ratio < params.local_fallback_min_constraint;
+  if (refined.overlap < params.local_fallback_min_overlap || weak) {
+    result.reason += weak ? "; refining the guess on the contours leaves a direction weakly constrained (corridor)"
+                                        : "; refining the guess on the contours pairs only " +
+                                              std::to_string(static_cast<int>(100 * refined.overlap)) + " %";
+    return;
+  }
+  result.transform = refined.transform;
+  result.contour_rmse = refined.rmse;
+  result.overlap = refined.overlap;
+  result.covariance = refined.covariance;
+  result.degenerate = false;
+  result.from_local_fallback = true;
+  result.converged = true;
+  result.status = RegistrationStatus::kConverged;
+  result.reason.clear();
+}
+
+}  // namespace
+
+RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
+                                    const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess) {
+  RegistrationResult result = registerByCorners(source, target, params, rng, guess);
+  const bool corners_undecided = result.status == RegistrationStatus::kTooFewSpecialPoints ||
+                                 result.status == RegistrationStatus::kTooFewCorrespondences ||
+                                 result.status == RegistrationStatus::kTooFewInliers;
+  if (!result.converged && corners_undecided && params.local_fallback_min_overlap > 0.0 && params.refinement.enabled &&
+      !source.contours.empty() && !target.contours.empty())
+    tryLocalFallback(source, target, params, guess, result);
   return result;
 }
 

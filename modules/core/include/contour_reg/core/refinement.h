@@ -38,6 +38,9 @@ struct RefinementResult {
   double overlap = 0.0;      ///< fraction of source samples paired in the last iteration
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw
   bool degenerate = false;   ///< some direction of (x, y, yaw) unconstrained by the contours
+  /// Weakest over strongest eigenvalue of the translation information: 0 in a corridor,
+  /// 1 when the contours constrain x and y alike.
+  double constraint_ratio = 0.0;
   int iterations = 0;
 };
 

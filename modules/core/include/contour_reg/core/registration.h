@@ -36,6 +36,15 @@ struct RegistrationParams {
   /// guess_max_rotation, are dropped. <= 0 ignores the guess for pairing.
   double guess_max_distance = 0.0;
   double guess_max_rotation = 0.5;  ///< rad
+  /// When the corners cannot decide (too few special points, pairs or inliers), refine
+  /// the guess (identity without one) on the contours and accept the result when at
+  /// least this fraction of the source contour then lies on the target contour and every
+  /// direction is well constrained (local_fallback_min_constraint). <= 0 (the default)
+  /// disables it: such pairs then fail. 0.75 recovers about 2 % more pairs on real logs.
+  double local_fallback_min_overlap = 0.0;
+  /// The local fallback also needs the contours to constrain every direction of
+  /// translation: weakest / strongest eigenvalue of their information at least this.
+  double local_fallback_min_constraint = 0.1;
 
   bool validate(std::string *why = nullptr) const;
 };
@@ -67,10 +76,13 @@ struct RegistrationResult {
   double overlap = 0.0;           ///< fraction of source contour paired by the refinement
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw of the estimate
   bool degenerate = false;        ///< the contours leave some direction unconstrained
+  /// True when the corners could not decide and the estimate is the guess refined on the
+  /// contours (a local answer: right only when the guess was close enough).
+  bool from_local_fallback = false;
 };
 
 /// Registers `source` onto `target`. `guess` (source to target), when given, is the
-/// fallback transform; with guess_max_distance > 0 it gates the pairs, and with the
+/// fallback transform and the start of the local fallback; with guess_max_distance > 0 it gates the pairs, and with the
 /// rotation-dependent FragmentDistance::kReal the source fragments are turned by its yaw
 /// before comparing. With the affine model, RANSAC fits the paper's affine map; the
 /// refinement, when enabled, then refines its rigid part and that is reported.

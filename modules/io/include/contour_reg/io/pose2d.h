@@ -24,7 +24,8 @@ inline Pose2D toPose(const Eigen::Matrix3d &m) { return {m(0, 2), m(1, 2), std::
 
 /// The pose of `b` seen from `a`: a^-1 b.
 inline Pose2D between(const Pose2D &a, const Pose2D &b) {
-  return toPose(toMatrix(a).inverse() * toMatrix(b));
+  const double c = std::cos(a.yaw), s = std::sin(a.yaw), dx = b.x - a.x, dy = b.y - a.y;
+  return {c * dx + s * dy, -s * dx + c * dy, std::remainder(b.yaw - a.yaw, 2.0 * M_PI)};
 }
 
 /// `a` followed by the motion `delta` expressed in a's frame: a * delta.
