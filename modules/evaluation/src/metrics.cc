@@ -16,15 +16,20 @@ using io::between;
 double norm(const io::Pose2D &p) { return std::hypot(p.x, p.y); }
 
 struct MeanStd {
-  double sum = 0.0, sum_sq = 0.0;
-  std::size_t n = 0;
-  void add(double v) {
-    sum += v;
-    sum_sq += v * v;
-    ++n;
+  std::vector<double> values;
+  void add(double v) { values.push_back(v); }
+  double mean() const {
+    double sum = 0.0;
+    for (double v : values) sum += v;
+    return values.empty() ? 0.0 : sum / double(values.size());
   }
-  double mean() const { return n ? sum / double(n) : 0.0; }
-  double std() const { return n > 1 ? std::sqrt(std::max(0.0, (sum_sq - sum * sum / double(n)) / double(n - 1))) : 0.0; }
+  double std() const {  // sample standard deviation, two passes
+    if (values.size() < 2) return 0.0;
+    const double m = mean();
+    double sum_sq = 0.0;
+    for (double v : values) sum_sq += (v - m) * (v - m);
+    return std::sqrt(sum_sq / double(values.size() - 1));
+  }
 };
 
 }  // namespace
@@ -132,7 +137,7 @@ RelationErrors relationErrors(const io::Trajectory &estimate, const std::vector<
     translation.add(norm(error));
     rotation.add(std::abs(error.yaw) * 180.0 / M_PI);
   }
-  result.count = translation.n;
+  result.count = translation.values.size();
   result.translation_mean = translation.mean();
   result.translation_std = translation.std();
   result.rotation_mean = rotation.mean();

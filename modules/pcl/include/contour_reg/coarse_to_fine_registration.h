@@ -21,8 +21,12 @@ namespace contour_reg {
 /// has converged only when both stages did and the fine stage moved the coarse answer by
 /// at most setMaxFineCorrection() (metres, radians): a larger correction means ICP fell
 /// into another minimum, and the coarse answer is kept (converged, flagged by
-/// fineStageRejected()). When the coarse stage fails, nothing else runs: not converged,
-/// final transformation = guess.
+/// fineStageRejected()). When the coarse stage fails because its features cannot decide
+/// (a ContourRegistration reporting too few special points, pairs or inliers) and
+/// setFineFromGuess(true) (the default), the fine stage runs from the guess alone and its
+/// own convergence is reported (fineFromGuess() tells); a local answer, right only when
+/// the guess was close. Any other coarse failure (degenerate geometry, invalid input)
+/// ends there: not converged, final transformation = guess.
 ///
 /// Defaults: ContourRegistration, then ICP with TransformationEstimation2D, 0.3 m
 /// correspondence distance, 30 iterations, 1e-8 transformation epsilon.
@@ -65,6 +69,10 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   }
   /// True when the last fine stage failed or moved too far and the coarse answer was kept.
   bool fineStageRejected() const { return fine_rejected_; }
+  /// Run the fine stage from the guess when the coarse stage's features cannot decide.
+  void setFineFromGuess(bool enabled) { fine_from_guess_enabled_ = enabled; }
+  /// True when the last answer came from the fine stage alone, started at the guess.
+  bool fineFromGuess() const { return fine_from_guess_; }
 
   void setInputSource(const PointCloudSourceConstPtr &cloud) override {
     if (cloud && !cloud->empty()) Base::setInputSource(cloud);
@@ -91,9 +99,19 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
     final_transformation_ = transformation_ = guess;
     converged_ = false;
     fine_rejected_ = false;
+    fine_from_guess_ = false;
     PointCloudSource scratch;
     coarse_->align(scratch, guess);
     if (!coarse_->hasConverged()) {
+      if (fine_from_guess_enabled_ && coarseUndecided() && finite_source_ && finite_target_ &&
+          !finite_source_->empty() && !finite_target_->empty()) {
+        fine_->setInputSource(finite_source_);
+        fine_->setInputTarget(finite_target_);
+        fine_->align(scratch, guess);
+        fine_from_guess_ = true;
+        converged_ = fine_->hasConverged();
+        if (converged_) final_transformation_ = transformation_ = fine_->getFinalTransformation();
+      }
       pcl::transformPointCloud(*input_, output, final_transformation_);
       return;
     }
@@ -113,6 +131,14 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   }
 
  private:
+  bool coarseUndecided() const {
+    const auto *contour = dynamic_cast<const ContourRegistration<PointSource, PointTarget, Scalar> *>(coarse_.get());
+    if (!contour) return false;
+    const RegistrationStatus status = contour->getResult().status;
+    return status == RegistrationStatus::kTooFewSpecialPoints || status == RegistrationStatus::kTooFewCorrespondences ||
+           status == RegistrationStatus::kTooFewInliers;
+  }
+
   template <typename CloudPtr>
   static CloudPtr finite(const CloudPtr &cloud) {
     if (!cloud || cloud->is_dense) return cloud;
@@ -128,6 +154,7 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   PointCloudTargetConstPtr finite_target_;
   double max_fine_translation_ = 0.10, max_fine_rotation_ = 0.035;
   bool fine_rejected_ = false;
+  bool fine_from_guess_enabled_ = true, fine_from_guess_ = false;
 };
 
 }  // namespace contour_reg

@@ -1,0 +1,98 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "contour_reg/evaluation/metrics.h"
+#include "contour_reg/io/pose2d.h"
+
+namespace contour_reg::evaluation {
+namespace {
+
+// A 10 m x 10 m square walked counter-clockwise, one pose per metre, stamps 0..40.
+io::Trajectory square() {
+  io::Trajectory t;
+  double x = 0, y = 0;
+  const double dx[] = {1, 0, -1, 0}, dy[] = {0, 1, 0, -1};
+  for (int side = 0; side < 4; ++side)
+    for (int step = 0; step < 10; ++step) {
+      t.push_back({double(t.size()), {x, y, side * M_PI / 2}});
+      x += dx[side];
+      y += dy[side];
+    }
+  t.push_back({double(t.size()), {x, y, 2 * M_PI}});
+  return t;
+}
+
+TEST(Metrics, PathLengthOfTheSquare) { EXPECT_NEAR(pathLength(square()), 40.0, 1e-12); }
+
+TEST(Metrics, EndPointErrorIsOverThePathLength) {
+  const io::Trajectory truth = square();
+  io::Trajectory estimate = truth;
+  estimate.back().pose.x += 0.6;
+  estimate.back().pose.y += 0.8;
+  const EndPointError e = endPointError(associate(estimate, truth));
+  EXPECT_NEAR(e.error, 1.0, 1e-9);
+  EXPECT_NEAR(e.path_length, 40.0, 1e-9);
+  EXPECT_NEAR(e.percent, 2.5, 1e-9);
+}
+
+TEST(Metrics, EndPointErrorIgnoresWhereTheEstimateStarts) {
+  const io::Trajectory truth = square();
+  io::Trajectory estimate;
+  const io::Pose2D offset{5.0, -2.0, 0.7};
+  for (const auto &p : truth) estimate.push_back({p.stamp, io::compose(offset, p.pose)});
+  EXPECT_NEAR(endPointError(associate(estimate, truth)).error, 0.0, 1e-9);
+  EXPECT_NEAR(absoluteTrajectoryError(associate(estimate, truth)), 0.0, 1e-9);
+}
+
+TEST(Metrics, AteOfAConstantOffsetAfterAlignmentIsZeroAndOfNoiseIsItsRms) {
+  const io::Trajectory truth = square();
+  io::Trajectory estimate = truth;
+  // Alternate +-0.1 m across the path: alignment cannot remove it.
+  for (std::size_t k = 0; k < estimate.size(); ++k) estimate[k].pose.x += (k % 2 ? 0.1 : -0.1);
+  EXPECT_NEAR(absoluteTrajectoryError(associate(estimate, truth)), 0.1, 0.002);
+}
+
+TEST(Metrics, DriftOfAOnePercentScaleErrorIsOnePercent) {
+  io::Trajectory truth, estimate;
+  for (int k = 0; k <= 100; ++k) {
+    truth.push_back({double(k), {0.5 * k, 0.0, 0.0}});
+    estimate.push_back({double(k), {0.505 * k, 0.0, 0.0}});
+  }
+  const Drift d = drift(associate(estimate, truth), 10.0);
+  EXPECT_NEAR(d.mean_percent, 1.0, 1e-6);
+  EXPECT_EQ(d.windows, 81u);  // starts 0..80 have 10 m ahead of them
+}
+
+TEST(Metrics, RelationErrorsOfAnExactTrajectoryAreZeroAndOfAShiftedOneAreTheShift) {
+  const io::Trajectory truth = square();
+  std::vector<io::Relation> relations;
+  for (int k = 0; k + 3 < 40; k += 3)
+    relations.push_back({double(k), double(k + 3), io::between(truth[k].pose, truth[k + 3].pose)});
+  RelationErrors e = relationErrors(truth, relations);
+  EXPECT_EQ(e.count, relations.size());
+  EXPECT_NEAR(e.translation_mean, 0.0, 1e-9);
+  EXPECT_NEAR(e.rotation_mean, 0.0, 1e-9);
+
+  std::vector<io::Relation> off = relations;
+  for (io::Relation &r : off) r.motion.x -= 0.2;  // every measured motion 0.2 m short along its own x
+  e = relationErrors(truth, off);
+  EXPECT_NEAR(e.translation_mean, 0.2, 1e-9);
+  EXPECT_NEAR(e.translation_std, 0.0, 1e-9);
+
+  relations.push_back({100.0, 101.0, {}});  // beyond the trajectory
+  EXPECT_EQ(relationErrors(truth, relations).missing, 1u);
+  EXPECT_EQ(relationErrors(truth, relations, 2.0).count, 0u);  // all are 3 s apart
+}
+
+TEST(Metrics, PosesBetweenSamplesAreInterpolated) {
+  const io::Trajectory t{{0.0, {0, 0, 0}}, {2.0, {2, 0, 0.2}}};
+  const auto p = poseAt(t, 1.0, 3.0);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->yaw, 0.1, 1e-12);
+  EXPECT_FALSE(poseAt(t, 2.5, 3.0));
+  EXPECT_FALSE(poseAt(t, 1.0));  // samples more than the default 1 s apart
+}
+
+}  // namespace
+}  // namespace contour_reg::evaluation

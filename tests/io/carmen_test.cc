@@ -1,0 +1,151 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include "contour_reg/io/carmen.h"
+#include "contour_reg/io/read_log.h"
+#include "temp_dir.h"
+
+namespace contour_reg::io {
+namespace {
+
+using test::TempDir;
+
+// A FLASER line of n beams at range r, odometry pose (x, y, yaw) and a stamp.
+std::string flaser(int n, double r, double x, double y, double yaw, double stamp) {
+  std::string line = "FLASER " + std::to_string(n);
+  for (int k = 0; k < n; ++k) line += " " + std::to_string(r);
+  char tail[256];
+  std::snprintf(tail, sizeof tail, " %f %f %f %f %f %f %f host %f\n", x, y, yaw, x, y, yaw, stamp, stamp);
+  return line + tail;
+}
+
+TEST(Carmen, FlaserGivesBeamGeometryRangesOdometryAndStamp) {
+  TempDir dir;
+  const auto path = dir.write("a.clf", flaser(180, 2.5, 1.0, 2.0, 0.5, 10.0));
+  const ScanLog log = readCarmen(path);
+  ASSERT_EQ(log.entries.size(), 1u);
+  const LaserScan &scan = log.entries[0].scan;
+  EXPECT_EQ(scan.ranges.size(), 180u);
+  EXPECT_NEAR(scan.angle_min, -M_PI / 2, 1e-12);
+  EXPECT_NEAR(scan.angle_increment, M_PI / 180, 1e-12);
+  EXPECT_FLOAT_EQ(scan.ranges[17], 2.5f);
+  EXPECT_DOUBLE_EQ(scan.stamp, 10.0);
+  ASSERT_TRUE(log.entries[0].odometry);
+  EXPECT_DOUBLE_EQ(log.entries[0].odometry->y, 2.0);
+}
+
+TEST(Carmen, ReadingsAtMaxRangeAreNoReturn) {
+  TempDir dir;
+  const ScanLog log = readCarmen(dir.write("a.clf", flaser(4, 81.83, 0, 0, 0, 1.0)));
+  for (float r : log.entries[0].scan.ranges) EXPECT_TRUE(std::isnan(r));
+}
+
+TEST(Carmen, OutOfOrderScansAreSortedAndCounted) {
+  TempDir dir;
+  const auto path = dir.write("a.clf", flaser(4, 1, 0, 0, 0, 3.0) + flaser(4, 1, 0, 0, 0, 1.0) + flaser(4, 1, 0, 0, 0, 2.0));
+  const ScanLog log = readCarmen(path);
+  ASSERT_EQ(log.entries.size(), 3u);
+  EXPECT_DOUBLE_EQ(log.entries[0].scan.stamp, 1.0);
+  EXPECT_DOUBLE_EQ(log.entries[2].scan.stamp, 3.0);
+  EXPECT_EQ(log.report.reordered, 1u);
+}
+
+TEST(Carmen, RawLaserGetsOdometryInterpolatedFromOdomLines) {
+  TempDir dir;
+  const std::string text = "ODOM 0 0 0 0 0 0 10.0 host 10.0\n"
+                           "RAWLASER1 0 -1.5708 3.1416 0.0175 80 0.01 0 3 1.0 1.0 1.0 0 11.0 host 11.0\n"
+                           "ODOM 2 4 0.2 0 0 0 12.0 host 12.0\n";
+  const ScanLog log = readCarmen(dir.write("a.clf", text));
+  ASSERT_EQ(log.entries.size(), 1u);
+  ASSERT_TRUE(log.entries[0].odometry);
+  EXPECT_NEAR(log.entries[0].odometry->x, 1.0, 1e-9);
+  EXPECT_NEAR(log.entries[0].odometry->y, 2.0, 1e-9);
+  EXPECT_NEAR(log.entries[0].odometry->yaw, 0.1, 1e-9);
+}
+
+TEST(Carmen, BadAndTruncatedLinesAreSkippedAndNamedByFileAndLine) {
+  TempDir dir;
+  const std::string good = flaser(4, 1, 0, 0, 0, 1.0);
+  const std::string text = good + "FLASER 4 1 1 nonsense 1 0 0 0 0 0 0 2.0 host 2.0\n" + "FLASER 999999999 1 2\n" +
+                           flaser(4, 1, 0, 0, 0, 3.0) + "FLASER 4 1 1 1";  // truncated, no newline
+  const auto path = dir.write("bad.clf", text);
+  const ScanLog log = readCarmen(path);
+  EXPECT_EQ(log.entries.size(), 2u);
+  EXPECT_EQ(log.report.skipped, 3u);
+  ASSERT_EQ(log.report.problems.size(), 3u);
+  EXPECT_NE(log.report.problems[0].find(path + ":2:"), std::string::npos) << log.report.problems[0];
+  EXPECT_NE(log.report.problems[1].find("absurd beam count"), std::string::npos) << log.report.problems[1];
+  EXPECT_NE(log.report.problems[2].find(":5:"), std::string::npos) << log.report.problems[2];
+}
+
+TEST(Carmen, NanAndInfRangesBecomeInvalidBeams) {
+  TempDir dir;
+  const ScanLog log = readCarmen(dir.write("a.clf", "FLASER 4 1.0 nan inf -1 0 0 0 0 0 0 5.0 host 5.0\n"));
+  ASSERT_EQ(log.entries.size(), 1u);
+  const auto &r = log.entries[0].scan.ranges;
+  EXPECT_FLOAT_EQ(r[0], 1.0f);
+  EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[2]) && std::isnan(r[3]));
+}
+
+TEST(Carmen, FilesWithoutAUsableScanAreErrorsNamingTheFile) {
+  TempDir dir;
+  for (const std::string &text : {std::string(), std::string("ODOM 0 0 0 0 0 0 1 h 1\n"),
+                                  std::string("\x7f\x45\x4c\x46\x02\x01\x01\0\0\0garbage\xff\xfe", 20)}) {
+    const auto path = dir.write("empty.clf", text);
+    try {
+      readCarmen(path);
+      FAIL() << "no error for " << path;
+    } catch (const ReadError &error) {
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos);
+    }
+  }
+  EXPECT_THROW(readCarmen(dir.file("missing.clf")), ReadError);
+}
+
+TEST(Carmen, GzipLogsReadLikePlainOnes) {
+  TempDir dir;
+  const std::string text = flaser(6, 1.5, 0, 0, 0, 1.0) + flaser(6, 1.7, 0.1, 0, 0, 2.0);
+  gzFile file = gzopen(dir.file("a.clf.gz").c_str(), "wb");
+  gzwrite(file, text.data(), static_cast<unsigned>(text.size()));
+  gzclose(file);
+  const ScanLog plain = readCarmen(dir.write("a.clf", text)), zipped = readCarmen(dir.file("a.clf.gz"));
+  ASSERT_EQ(zipped.entries.size(), 2u);
+  EXPECT_EQ(zipped.entries[1].scan.ranges, plain.entries[1].scan.ranges);
+}
+
+TEST(Carmen, WrittenLogsReadBackWithBeamGeometry) {
+  TempDir dir;
+  ScanLog log;
+  LogEntry entry;
+  entry.scan.stamp = 4.25;
+  entry.scan.angle_min = -2.0;
+  entry.scan.angle_increment = 0.01;
+  entry.scan.range_max = 30.0;
+  entry.scan.ranges = {1.0f, std::nanf(""), 2.5f, 3.25f};
+  entry.odometry = Pose2D{1.5, -2.0, 0.3};
+  log.entries.push_back(entry);
+  writeCarmen(dir.file("w.clf"), log);
+  const ScanLog back = readLog(dir.file("w.clf"));
+  ASSERT_EQ(back.entries.size(), 1u);
+  const LaserScan &s = back.entries[0].scan;
+  EXPECT_NEAR(s.angle_min, -2.0, 1e-9);
+  EXPECT_NEAR(s.angle_increment, 0.01, 1e-9);
+  EXPECT_NEAR(s.stamp, 4.25, 1e-6);
+  EXPECT_FLOAT_EQ(s.ranges[3], 3.25f);
+  EXPECT_TRUE(std::isnan(s.ranges[1]));
+  EXPECT_NEAR(back.entries[0].odometry->yaw, 0.3, 1e-6);
+}
+
+TEST(Carmen, SharedLogsRead) {
+  const std::string path = test::sharedDataset("intel/intel.clf");
+  if (path.empty()) GTEST_SKIP() << "../shared/datasets/intel is absent";
+  const ScanLog log = readCarmen(path);
+  EXPECT_EQ(log.entries.size(), 13631u);
+  EXPECT_EQ(log.entries[0].scan.ranges.size(), 180u);
+  EXPECT_TRUE(log.entries[100].odometry.has_value());
+}
+
+}  // namespace
+}  // namespace contour_reg::io

@@ -1,0 +1,76 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
+#include "contour_reg/core/contour.h"
+#include "contour_reg/io/pcd_folder.h"
+#include "contour_reg/io/read_log.h"
+#include "temp_dir.h"
+
+namespace contour_reg::io {
+namespace {
+
+LaserScan sampleScan(double shift) {
+  LaserScan scan;
+  scan.angle_min = -2.0;
+  scan.angle_increment = 0.01;
+  for (int k = 0; k < 300; ++k) scan.ranges.push_back(k % 37 == 5 ? std::nanf("") : float(3.0 + shift + std::sin(k * 0.05)));
+  return scan;
+}
+
+void savePcd(const std::string &path, const LaserScan &scan, bool keep_invalid) {
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  for (const Complex &c : polarCode(scan)) {
+    if (!keep_invalid && !isFinite(c)) continue;
+    cloud.push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
+  }
+  cloud.is_dense = !keep_invalid;
+  pcl::io::savePCDFileBinary(path, cloud);
+}
+
+TEST(PcdFolder, BeamOrderCloudsGiveBackTheScan) {
+  test::TempDir dir;
+  const LaserScan a = sampleScan(0.0), b = sampleScan(0.5);
+  savePcd(dir.file("2.5.pcd"), b, true);   // organized, NaN kept
+  savePcd(dir.file("1.0.pcd"), a, false);  // dense: invalid beams dropped
+  const ScanLog log = readLog(dir.path().string());
+  ASSERT_EQ(log.entries.size(), 2u);
+  EXPECT_DOUBLE_EQ(log.entries[0].scan.stamp, 1.0);
+  EXPECT_DOUBLE_EQ(log.entries[1].scan.stamp, 2.5);
+  EXPECT_TRUE(log.report.problems.empty()) << log.report.problems.front();
+  for (std::size_t e = 0; e < 2; ++e) {
+    const LaserScan &want = e == 0 ? a : b, &got = log.entries[e].scan;
+    EXPECT_NEAR(got.angle_increment, want.angle_increment, 1e-6);
+    // Both layouts give the same points back (the dense one without its invalid beams).
+    const ComplexSequence p = polarCode(want), q = polarCode(got);
+    std::size_t matched = 0;
+    for (const Complex &x : q)
+      if (isFinite(x))
+        for (const Complex &y : p)
+          if (isFinite(y) && std::abs(x - y) < 1e-4) {
+            ++matched;
+            break;
+          }
+    EXPECT_EQ(matched, 300u - 8u);  // beams 5, 42, ..., 264 are invalid
+  }
+}
+
+TEST(PcdFolder, UnreadableFilesAreReportedAndSkipped) {
+  test::TempDir dir;
+  savePcd(dir.file("1.pcd"), sampleScan(0.0), false);
+  dir.write("2.pcd", "this is not a point cloud\n");
+  const ScanLog log = readPcdFolder(dir.path().string());
+  EXPECT_EQ(log.entries.size(), 1u);
+  EXPECT_EQ(log.report.skipped, 1u);
+}
+
+TEST(PcdFolder, AFolderWithoutScansIsAnError) {
+  test::TempDir dir;
+  EXPECT_THROW(readPcdFolder(dir.path().string()), ReadError);
+  EXPECT_THROW(readPcdFolder(dir.file("missing")), ReadError);
+}
+
+}  // namespace
+}  // namespace contour_reg::io
