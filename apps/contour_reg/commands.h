@@ -28,5 +28,6 @@ void addRelationsCommand(CLI::App &app);
 void addOdometryCommand(CLI::App &app);
 void addEvaluateCommand(CLI::App &app);
 void addCompareCommand(CLI::App &app);
+void addDebugCommand(CLI::App &app);
 
 }  // namespace contour_reg::cli

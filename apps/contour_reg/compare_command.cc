@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -11,6 +12,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "contour_reg/drawing/debug_images.h"
 #include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
@@ -215,6 +217,15 @@ int runCompare(const CompareOptions &options) {
     rows.push_back(row);
   }
   std::stable_sort(rows.begin(), rows.end(), [](const Row &a, const Row &b) { return a.input < b.input; });
+  // Trajectory pictures where there is ground truth.
+  for (const Input &input : inputs) {
+    if (!input.ground_truth) continue;
+    std::map<std::string, io::Trajectory> estimates;
+    for (const std::string &method : options.methods)
+      estimates[method] = io::readTum((fs::path(options.out) / (input.name + "." + method + ".tum")).string());
+    drawing::writeImage((fs::path(options.out) / (input.name + ".trajectories.png")).string(),
+                        drawing::drawTrajectories(estimates, *input.ground_truth));
+  }
   std::printf("guess: %s; %s; %u parallel jobs; ms = registration only\n\n", options.guess.c_str(),
               options.keyframes ? "keyframes" : "scan to scan", threads);
   writeTables(rows, options);

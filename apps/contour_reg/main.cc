@@ -14,6 +14,7 @@ int main(int argc, char **argv) {
   contour_reg::cli::addEvaluateCommand(app);
   contour_reg::cli::addCompareCommand(app);
   contour_reg::cli::addRelationsCommand(app);
+  contour_reg::cli::addDebugCommand(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

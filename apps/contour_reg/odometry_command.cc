@@ -1,5 +1,6 @@
 // contour_reg odometry: a trajectory by chaining scan registrations of one method.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include <pcl/console/print.h>
@@ -9,6 +10,7 @@
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
 #include "contour_reg/odometry/odometry.h"
+#include "debug_dump.h"
 
 namespace contour_reg::cli {
 
@@ -17,6 +19,8 @@ namespace {
 struct OdometryCommandOptions {
   std::string input, output, method = "contour", guess = "zero";
   bool odom_guess = false, keyframes = false;
+  std::string debug_dir;
+  std::size_t debug_every = 0;
   double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
   io::LogReadOptions read;
   MethodOptions methods;
@@ -40,6 +44,16 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   run_options.keyframe_angle = options.keyframe_angle_deg * M_PI / 180.0;
   ProgressBar progress(options.method);
   run_options.progress = [&](std::size_t done, std::size_t total) { progress(done, total); };
+  // Debug images: every N-th pair and every failed registration.
+  std::unique_ptr<DebugDumper> dumper;
+  if (!options.debug_dir.empty()) {
+    std::filesystem::create_directories(options.debug_dir);
+    dumper = std::make_unique<DebugDumper>(options.debug_dir, options.methods.settings());
+    run_options.on_match = [&](std::size_t reference, std::size_t k, const odometry::MatchResult &match) {
+      if (!match.converged || (options.debug_every > 0 && k % options.debug_every == 0))
+        dumper->dumpPair(log, reference, k);
+    };
+  }
   const odometry::OdometryRun run = odometry::runOdometry(log, *matcher, run_options);
   io::writeTum(options.output, run.trajectory);
   std::printf("%s: %zu scans, %zu registrations by %s, %zu failed (%zu degenerate), median %.3f ms, p95 %.3f ms\n",
@@ -67,6 +81,9 @@ void addOdometryCommand(CLI::App &app) {
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
       ->capture_default_str();
   command->add_option("--keyframe-angle", options->keyframe_angle_deg, "New keyframe after this turn (deg)")
+      ->capture_default_str();
+  command->add_option("--debug-dir", options->debug_dir, "Write debug images of failed registrations here");
+  command->add_option("--debug-every", options->debug_every, "With --debug-dir, also every N-th pair (0: failures only)")
       ->capture_default_str();
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->methods);

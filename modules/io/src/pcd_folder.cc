@@ -82,9 +82,16 @@ ScanLog readPcdFolder(const std::string &folder, double max_range) {
     const std::string file = files[k].string();
     ++log.report.lines;
     pcl::PointCloud<pcl::PointXYZ> cloud;
+    // The header first: PCL's reader is not safe on files that announce no points.
     bool read = false;
     try {
-      read = reader.read(file, cloud) == 0;
+      pcl::PCLPointCloud2 header;
+      Eigen::Vector4f origin;
+      Eigen::Quaternionf orientation;
+      int version = 0, data_type = 0;
+      unsigned int data_index = 0;
+      read = reader.readHeader(file, header, origin, orientation, version, data_type, data_index) == 0 &&
+             std::size_t(header.width) * header.height > 0 && reader.read(file, cloud) == 0;
     } catch (const std::exception &) {
       read = false;
     }

@@ -49,6 +49,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     const io::Pose2D guess = between(poses[reference], expected);
     const MatchResult match = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess));
     ++run.stats.registrations;
+    if (options.on_match) options.on_match(reference, k, match);
     run.stats.milliseconds.push_back(match.milliseconds);
     io::Pose2D pose;
     if (match.converged) {

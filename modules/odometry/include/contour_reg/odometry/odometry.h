@@ -30,6 +30,8 @@ struct OdometryOptions {
   double keyframe_angle = 0.2;     ///< rad of turn from the keyframe that starts a new one
   /// Called after every scan with (scans done, scans in all).
   std::function<void(std::size_t, std::size_t)> progress;
+  /// Called after every registration with (reference scan index, scan index, result).
+  std::function<void(std::size_t, std::size_t, const MatchResult &)> on_match;
 };
 
 struct OdometryStats {

@@ -1,0 +1,39 @@
+#include "debug_dump.h"
+
+#include <filesystem>
+#include <random>
+
+#include "contour_reg/core/registration.h"
+#include "contour_reg/drawing/debug_images.h"
+
+namespace contour_reg::cli {
+
+std::vector<std::string> DebugDumper::dumpPair(const io::ScanLog &log, std::size_t target, std::size_t source,
+                                               const std::vector<std::string> &methods) const {
+  namespace fs = std::filesystem;
+  const LaserScan &a = log.entries[target].scan, &b = log.entries[source].scan;
+  const ContourFeatures fa = extractContourFeatures(a, settings_.contour), fb = extractContourFeatures(b, settings_.contour);
+  std::mt19937 rng(42);  // ContourRegistration's default seed
+  const RegistrationResult result = registerContours(fb, fa, settings_.registration, rng);
+  const std::string stem = std::to_string(target) + "_" + std::to_string(source);
+  std::vector<std::string> written{(fs::path(folder_) / ("scan_" + std::to_string(source) + ".png")).string(),
+                                   (fs::path(folder_) / ("pair_" + stem + ".png")).string()};
+  char title[128];
+  std::snprintf(title, sizeof title, "scan %zu (stamp %.3f s)", source, b.stamp);
+  drawing::writeImage(written[0], drawing::drawScan(b, fb, settings_.contour, title));
+  std::snprintf(title, sizeof title, "scan %zu (source) onto scan %zu (target)", source, target);
+  drawing::writeImage(written[1], drawing::drawPair(a, b, fa, fb, result, title));
+  if (!methods.empty()) {
+    std::vector<drawing::Alignment> alignments;
+    for (const std::string &method : methods) {
+      auto matcher = odometry::makeScanMatcher(method, settings_);
+      const odometry::MatchResult match = matcher->match(a, b);
+      alignments.push_back({method, match.transform, match.converged});
+    }
+    written.push_back((fs::path(folder_) / ("methods_" + stem + ".png")).string());
+    drawing::writeImage(written.back(), drawing::drawAlignments(a, b, alignments));
+  }
+  return written;
+}
+
+}  // namespace contour_reg::cli

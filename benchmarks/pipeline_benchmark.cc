@@ -1,0 +1,152 @@
+// Per-stage and end-to-end cost of the contour pipeline, and PCL's ICP, NDT2D and NDT on
+// the same scan pairs, at 360, 720 and 1081 beams.
+#include <random>
+
+#include <benchmark/benchmark.h>
+#include <pcl/console/print.h>
+
+#include "contour_reg/contour_registration.h"
+#include "contour_reg/core/contour.h"
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/correspondence.h"
+#include "contour_reg/core/registration.h"
+#include "contour_reg/odometry/scan_matcher.h"
+#include "scenes.h"
+
+namespace contour_reg::bench {
+namespace {
+
+const ContourParams kParams;
+
+void BM_ContourCode(benchmark::State &state) {  // stage A: polar code and segmentation (eqs. 1-2)
+  const ScanPair pair = scanPair(int(state.range(0)));
+  for (auto _ : state) {
+    auto segments = splitIntoSegments(polarCode(pair.source), kParams.segmentation);
+    benchmark::DoNotOptimize(segments);
+  }
+}
+
+void BM_Equalization(benchmark::State &state) {  // stage B
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const auto segments = splitIntoSegments(polarCode(pair.source), kParams.segmentation);
+  for (auto _ : state) {
+    auto contours = equalizeSegments(segments, kParams.equalization);
+    benchmark::DoNotOptimize(contours);
+  }
+}
+
+void BM_MatchedFilter(benchmark::State &state) {  // stage C: corner filter bank (eqs. 12-13)
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const auto contours = equalizeSegments(splitIntoSegments(polarCode(pair.source), kParams.segmentation),
+                                         kParams.equalization);
+  for (auto _ : state)
+    for (const EqualizedContour &c : contours) benchmark::DoNotOptimize(filterCorners(c, kParams.corner_filter));
+}
+
+void BM_SpecialPoints(benchmark::State &state) {  // stage C: maxima, vertex refinement, fragments
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const auto segments = splitIntoSegments(polarCode(pair.source), kParams.segmentation);
+  const auto contours = equalizeSegments(segments, kParams.equalization);
+  std::vector<CornerResponse> responses;
+  for (const EqualizedContour &c : contours) responses.push_back(filterCorners(c, kParams.corner_filter));
+  for (auto _ : state)
+    for (std::size_t k = 0; k < contours.size(); ++k)
+      benchmark::DoNotOptimize(findSpecialPoints(segments[k].points, contours[k], responses[k], kParams.corner_filter,
+                                                 kParams.special_points));
+}
+
+void BM_Features(benchmark::State &state) {  // stages A-C of one scan
+  const ScanPair pair = scanPair(int(state.range(0)));
+  ContourFeatures features;
+  const ComplexSequence code = polarCode(pair.source);
+  for (auto _ : state) {
+    extractContourFeatures(code, kParams, features);
+    benchmark::DoNotOptimize(features.special_points.data());
+  }
+  state.counters["special_points"] = double(features.special_points.size());
+}
+
+void BM_Correspondence(benchmark::State &state) {  // stage D (eq. 14)
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  const CorrespondenceParams params;
+  for (auto _ : state) benchmark::DoNotOptimize(findCorrespondences(b.special_points, a.special_points, params));
+}
+
+void BM_RansacAndRefinement(benchmark::State &state) {  // stages D-F + refinement, features given
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  RegistrationParams params;
+  params.refinement.enabled = state.range(1) != 0;
+  std::mt19937 rng;
+  for (auto _ : state) {
+    rng.seed(42);
+    benchmark::DoNotOptimize(registerContours(b, a, params, rng));
+  }
+}
+
+// A matcher on a pair whose clouds are new every iteration (nothing cached): both scans'
+// features are computed, as for a single pair.
+void runPair(benchmark::State &state, const std::string &method) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const ScanPair pair = scanPair(int(state.range(0)));
+  auto matcher = odometry::makeScanMatcher(method);
+  // Copies at fresh addresses each iteration defeat the per-scan cache.
+  std::vector<LaserScan> targets(2, pair.target), sources(2, pair.source);
+  std::size_t k = 0, converged = 0, iterations = 0;
+  double error = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    targets[k % 2].stamp = sources[k % 2].stamp = double(k);  // a new scan for the cache
+    state.ResumeTiming();
+    const odometry::MatchResult r = matcher->match(targets[k % 2], sources[k % 2]);
+    converged += r.converged;
+    error = std::hypot(r.transform(0, 2) - pair.truth.x(), r.transform(1, 2) - pair.truth.y());
+    ++k;
+    ++iterations;
+  }
+  state.counters["converged"] = double(converged) / double(std::max<std::size_t>(1, iterations));
+  state.counters["error_mm"] = 1000.0 * error;
+}
+
+void BM_PairContour(benchmark::State &state) { runPair(state, "contour"); }
+void BM_PairContourIcp(benchmark::State &state) { runPair(state, "contour+icp"); }
+void BM_PairIcp(benchmark::State &state) { runPair(state, "icp"); }
+void BM_PairNdt2d(benchmark::State &state) { runPair(state, "ndt2d"); }
+void BM_PairNdt(benchmark::State &state) { runPair(state, "ndt"); }
+
+// Odometry's steady state: the previous source is the new target, its features reused.
+void BM_OdometryStepContour(benchmark::State &state) {
+  const ScanPair pair = scanPair(int(state.range(0)));
+  auto matcher = odometry::makeScanMatcher("contour");
+  std::vector<LaserScan> scans{pair.target, pair.source};
+  std::size_t k = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    LaserScan &next = scans[(k + 1) % 2];
+    next.stamp = double(k + 1);
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(matcher->match(scans[k % 2], next));
+    ++k;
+  }
+}
+
+#define BEAMS ->Arg(360)->Arg(720)->Arg(1081)->Unit(benchmark::kMicrosecond)
+BENCHMARK(BM_ContourCode) BEAMS;
+BENCHMARK(BM_Equalization) BEAMS;
+BENCHMARK(BM_MatchedFilter) BEAMS;
+BENCHMARK(BM_SpecialPoints) BEAMS;
+BENCHMARK(BM_Features) BEAMS;
+BENCHMARK(BM_Correspondence) BEAMS;
+BENCHMARK(BM_RansacAndRefinement)->ArgsProduct({{360, 720, 1081}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PairContour) BEAMS;
+BENCHMARK(BM_OdometryStepContour) BEAMS;
+BENCHMARK(BM_PairContourIcp) BEAMS;
+BENCHMARK(BM_PairIcp) BEAMS;
+BENCHMARK(BM_PairNdt2d) BEAMS;
+BENCHMARK(BM_PairNdt) BEAMS;
+
+}  // namespace
+}  // namespace contour_reg::bench
+
+BENCHMARK_MAIN();

@@ -1,0 +1,75 @@
+#pragma once
+/// @file debug_images.h
+/// Pictures of what the contour method saw, drawn with OpenCV: one scan (points,
+/// contour segments, equalized vertices, special points, matched-filter response), one
+/// pair (special points, candidate pairs, RANSAC inliers and outliers, overlays after
+/// alignment by one or more methods), and trajectories against ground truth.
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/laser_scan.h"
+#include "contour_reg/core/registration.h"
+#include "contour_reg/io/trajectory.h"
+
+namespace contour_reg::drawing {
+
+/// Colours (BGR) the pictures use, so tests and readers can rely on them.
+struct Palette {
+  static cv::Scalar specialPoint() { return {0, 0, 230}; }  ///< red
+  static cv::Scalar target() { return {200, 120, 20}; }     ///< blue
+  static cv::Scalar source() { return {0, 140, 255}; }      ///< orange
+  static cv::Scalar inlier() { return {40, 170, 40}; }      ///< green
+  static cv::Scalar outlier() { return {60, 60, 220}; }     ///< light red
+  static cv::Scalar candidate() { return {170, 170, 170}; } ///< grey
+  static cv::Scalar warning() { return {0, 0, 255}; }       ///< pure red text
+};
+
+/// A metric-to-pixel map for a square-ish panel: y up, 1 m = `scale` px.
+struct View {
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< world point at the panel's lower-left
+  double scale = 50.0;                                ///< px per m
+  int width = 1200, height = 900;
+  cv::Point pixel(const Eigen::Vector2d &p) const;
+  /// A view that shows every finite point of `points` with a margin.
+  static View fit(const std::vector<Eigen::Vector2d> &points, int width, int height);
+};
+
+/// One scan: the panel (points, segments, equalized vertices, special points with a glyph
+/// showing corner angle and orientation, legend, scale bar) above a strip plot of the
+/// matched-filter response along the contours with the threshold and the maxima.
+cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const ContourParams &params,
+                 const std::string &title, int width = 1200);
+
+/// One pair: left, both scans in their own frames with special points, candidate pairs
+/// (grey), RANSAC inliers (green) and outliers (red); right, the source moved onto the
+/// target by the result (or the failure reason when it did not converge).
+cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const ContourFeatures &target_features,
+                 const ContourFeatures &source_features, const RegistrationResult &result, const std::string &title,
+                 int width = 1600);
+
+/// Overlays of the source moved onto the target by several methods, side by side.
+/// Each entry: method name, source-to-target transform, converged.
+struct Alignment {
+  std::string method;
+  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();
+  bool converged = false;
+};
+cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const std::vector<Alignment> &alignments,
+                       int panel_width = 600);
+
+/// Trajectories (name -> trajectory) over ground truth (black), each re-anchored at the
+/// ground truth's first pose; below, the position error along the distance travelled.
+cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates, const io::Trajectory &ground_truth,
+                         int width = 1200);
+
+/// Writes `image` to `path` (format by extension). Throws std::runtime_error naming the file.
+void writeImage(const std::string &path, const cv::Mat &image);
+
+}  // namespace contour_reg::drawing

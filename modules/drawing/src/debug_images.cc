@@ -1,0 +1,348 @@
+#include "contour_reg/drawing/debug_images.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "contour_reg/core/contour.h"
+#include "contour_reg/io/pose2d.h"
+
+namespace contour_reg::drawing {
+
+namespace {
+
+const cv::Scalar kWhite(255, 255, 255), kBlack(0, 0, 0), kRawPoint(150, 150, 150);
+constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+
+// Distinct colours for contour segments (no red: red marks special points).
+cv::Scalar segmentColour(std::size_t k) {
+  static const cv::Scalar colours[] = {{180, 119, 31}, {44, 160, 44}, {189, 103, 148}, {75, 86, 140},
+                                       {194, 119, 227}, {34, 189, 188}, {207, 190, 23}, {127, 127, 127}};
+  return colours[k % 8];
+}
+
+std::vector<Eigen::Vector2d> finitePoints(const LaserScan &scan, const Eigen::Matrix3d &transform) {
+  std::vector<Eigen::Vector2d> points;
+  for (const Complex &c : polarCode(scan))
+    if (isFinite(c)) points.push_back(transform.topLeftCorner<2, 2>() * toEigen(c) + transform.topRightCorner<2, 1>());
+  return points;
+}
+
+// Warnings are drawn bold and without anti-aliasing, in exactly Palette::warning().
+void text(cv::Mat &image, const std::string &s, cv::Point at, double size = 0.6, cv::Scalar colour = kBlack) {
+  const bool warning = colour == Palette::warning();
+  cv::putText(image, s, at, kFont, size, colour, warning ? 2 : 1, warning ? cv::LINE_8 : cv::LINE_AA);
+}
+
+// A scale bar of a round length in the lower-right corner, and the sensor at the origin.
+void decorate(cv::Mat &image, const View &view) {
+  const double metres_wanted = 150.0 / view.scale;
+  double bar = 1.0;
+  for (double candidate : {0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0})
+    if (candidate <= metres_wanted) bar = candidate;
+  const int length = static_cast<int>(bar * view.scale);
+  const cv::Point end(view.width - 30, view.height - 25);
+  cv::line(image, end - cv::Point(length, 0), end, kBlack, 3);
+  char label[32];
+  std::snprintf(label, sizeof label, "%g m", bar);
+  text(image, label, end - cv::Point(length, 10));
+  const cv::Point sensor = view.pixel({0, 0});
+  cv::drawMarker(image, sensor, kBlack, cv::MARKER_TRIANGLE_UP, 14, 2);
+}
+
+void drawPoints(cv::Mat &image, const View &view, const std::vector<Eigen::Vector2d> &points, cv::Scalar colour,
+                int radius = 1) {
+  for (const Eigen::Vector2d &p : points) cv::circle(image, view.pixel(p), radius, colour, cv::FILLED, cv::LINE_AA);
+}
+
+// A special point: a filled disc at the vertex and the two arms of its corner.
+void drawSpecialPoint(cv::Mat &image, const View &view, const SpecialPoint &point, const Eigen::Matrix3d &transform,
+                      cv::Scalar colour) {
+  const Eigen::Vector2d at = transform.topLeftCorner<2, 2>() * point.position + transform.topRightCorner<2, 1>();
+  const double turn = std::atan2(transform(1, 0), transform(0, 0));
+  const double arm = 0.35;
+  for (double side : {-0.5, 0.5}) {
+    const double a = point.orientation + turn + side * point.corner_angle;
+    cv::line(image, view.pixel(at), view.pixel(at + arm * Eigen::Vector2d(std::cos(a), std::sin(a))), colour, 2,
+             cv::LINE_AA);
+  }
+  cv::circle(image, view.pixel(at), 6, colour, cv::FILLED, cv::LINE_AA);
+}
+
+void legend(cv::Mat &image, const std::vector<std::pair<std::string, cv::Scalar>> &entries, cv::Point at) {
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const cv::Point row = at + cv::Point(0, static_cast<int>(22 * k));
+    cv::circle(image, row + cv::Point(6, -5), 6, entries[k].second, cv::FILLED, cv::LINE_AA);
+    text(image, entries[k].first, row + cv::Point(18, 0), 0.55);
+  }
+}
+
+}  // namespace
+
+cv::Point View::pixel(const Eigen::Vector2d &p) const {
+  return {static_cast<int>(std::lround((p.x() - origin.x()) * scale)),
+          static_cast<int>(std::lround(height - (p.y() - origin.y()) * scale))};
+}
+
+View View::fit(const std::vector<Eigen::Vector2d> &points, int width, int height) {
+  View view;
+  view.width = width;
+  view.height = height;
+  Eigen::Vector2d lo(-1, -1), hi(1, 1);
+  for (const Eigen::Vector2d &p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double margin = 0.08;
+  const Eigen::Vector2d size = (hi - lo) * (1.0 + 2 * margin);
+  view.scale = std::min(width / size.x(), height / size.y());
+  const Eigen::Vector2d centre = 0.5 * (lo + hi);
+  view.origin = centre - 0.5 * Eigen::Vector2d(width, height) / view.scale;
+  return view;
+}
+
+cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const ContourParams &params,
+                 const std::string &title, int width) {
+  const int panel_height = width * 3 / 4, strip_height = width / 5;
+  cv::Mat image(panel_height + strip_height, width, CV_8UC3, kWhite);
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  const std::vector<Eigen::Vector2d> points = finitePoints(scan, identity);
+  const View view = View::fit(points, width, panel_height);
+  cv::Mat panel = image(cv::Rect(0, 0, width, panel_height));
+
+  drawPoints(panel, view, points, kRawPoint, 2);
+  for (std::size_t k = 0; k < features.contours.size(); ++k) {
+    const ComplexSequence &v = features.contours[k].vertices;
+    for (std::size_t r = 0; r + 1 < v.size(); ++r)
+      cv::line(panel, view.pixel(toEigen(v[r])), view.pixel(toEigen(v[r + 1])), segmentColour(k), 2, cv::LINE_AA);
+    if (features.contours[k].step * view.scale >= 6.0)  // vertices only where they stand apart
+      for (const Complex &c : v) cv::circle(panel, view.pixel(toEigen(c)), 2, kBlack, cv::FILLED);
+  }
+  for (const SpecialPoint &p : features.special_points) drawSpecialPoint(panel, view, p, identity, Palette::specialPoint());
+  decorate(panel, view);
+  text(panel, title, {15, 30}, 0.8);
+  char summary[160];
+  std::snprintf(summary, sizeof summary, "%zu beams, %zu contour segments, %zu special points (threshold %.2f)",
+                scan.ranges.size(), features.segments.size(), features.special_points.size(),
+                params.special_points.threshold);
+  text(panel, summary, {15, 58});
+  if (features.special_points.empty())
+    text(panel, "NO SPECIAL POINTS: this scan cannot be matched by its corners", {15, 88}, 0.7, Palette::warning());
+  legend(panel, {{"raw points", kRawPoint}, {"contour segment (one colour each)", segmentColour(0)},
+                 {"equalized vertex", kBlack}, {"special point (corner arms)", Palette::specialPoint()}},
+         {15, panel_height - 100});
+
+  // The strip: response c(n) of every contour, one after another, separated by ticks.
+  cv::Mat strip = image(cv::Rect(0, panel_height, width, strip_height));
+  cv::line(strip, {0, 0}, {width, 0}, kBlack, 1);
+  std::size_t total = 0;
+  for (const CornerResponse &r : features.responses) total += r.response.size();
+  const int left = 50, right = width - 20, top = 25, bottom = strip_height - 25;
+  auto y_of = [&](double c) { return static_cast<int>(bottom - std::clamp(c, 0.0, 1.0) * (bottom - top)); };
+  text(strip, "matched-filter response c(n) along the contours", {left, 18}, 0.55);
+  text(strip, "1", {left - 20, top + 5}, 0.45);
+  text(strip, "0", {left - 20, bottom + 5}, 0.45);
+  const int threshold_y = y_of(params.special_points.threshold);
+  cv::line(strip, {left, threshold_y}, {right, threshold_y}, Palette::specialPoint(), 1, cv::LINE_AA);
+  text(strip, "threshold", {right - 80, threshold_y - 4}, 0.45, Palette::specialPoint());
+  if (total > 1) {
+    const double dx = double(right - left) / double(total - 1);
+    std::size_t offset = 0;
+    for (std::size_t k = 0; k < features.responses.size(); ++k) {
+      const auto &c = features.responses[k].response;
+      for (std::size_t n = 0; n + 1 < c.size(); ++n)
+        cv::line(strip, {left + int((offset + n) * dx), y_of(c[n])}, {left + int((offset + n + 1) * dx), y_of(c[n + 1])},
+                 segmentColour(k), 1, cv::LINE_AA);
+      for (const SpecialPoint &p : features.special_points)
+        if (p.contour == int(k) && p.vertex >= 0)
+          cv::circle(strip, {left + int((offset + std::size_t(p.vertex)) * dx), y_of(p.response)}, 5,
+                     Palette::specialPoint(), cv::FILLED, cv::LINE_AA);
+      offset += c.size();
+      cv::line(strip, {left + int(offset * dx), bottom}, {left + int(offset * dx), bottom + 6}, kBlack, 1);
+    }
+  } else {
+    text(strip, "no contour long enough for the filter", {left, (top + bottom) / 2}, 0.6, Palette::warning());
+  }
+  return image;
+}
+
+cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const ContourFeatures &target_features,
+                 const ContourFeatures &source_features, const RegistrationResult &result, const std::string &title,
+                 int width) {
+  const int panel = width / 2, height = panel;
+  cv::Mat image(height, width, CV_8UC3, kWhite);
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  const auto target_points = finitePoints(target, identity), source_points = finitePoints(source, identity);
+  std::vector<Eigen::Vector2d> all = target_points;
+  all.insert(all.end(), source_points.begin(), source_points.end());
+  const View view = View::fit(all, panel, height);
+
+  // Left: both scans in their own sensor frames, pairs between their special points.
+  cv::Mat left = image(cv::Rect(0, 0, panel, height));
+  drawPoints(left, view, target_points, Palette::target());
+  drawPoints(left, view, source_points, Palette::source());
+  std::vector<bool> is_inlier(result.candidates.size(), false);
+  for (int i : result.inliers) is_inlier[std::size_t(i)] = true;
+  for (std::size_t k = 0; k < result.candidates.size(); ++k) {
+    const Correspondence &c = result.candidates[k];
+    const auto from = static_cast<std::size_t>(c.source), to = static_cast<std::size_t>(c.target);
+    if (c.source < 0 || c.target < 0 || from >= source_features.special_points.size() ||
+        to >= target_features.special_points.size())
+      continue;
+    const cv::Scalar colour =
+        is_inlier[k] ? Palette::inlier() : (result.inliers.empty() ? Palette::candidate() : Palette::outlier());
+    cv::line(left, view.pixel(source_features.special_points[from].position),
+             view.pixel(target_features.special_points[to].position), colour, is_inlier[k] ? 2 : 1, cv::LINE_AA);
+  }
+  for (const SpecialPoint &p : target_features.special_points) drawSpecialPoint(left, view, p, identity, Palette::target());
+  for (const SpecialPoint &p : source_features.special_points) drawSpecialPoint(left, view, p, identity, Palette::source());
+  decorate(left, view);
+  text(left, title, {15, 30}, 0.7);
+  char counts[200];
+  std::snprintf(counts, sizeof counts, "special points: %zu target, %zu source; %zu candidate pairs, %zu inliers",
+                result.target_points, result.source_points, result.candidates.size(), result.inliers.size());
+  text(left, counts, {15, 56}, 0.5);
+  legend(left, {{"target scan", Palette::target()}, {"source scan", Palette::source()}, {"RANSAC inlier pair", Palette::inlier()},
+                {"outlier pair", Palette::outlier()}},
+         {15, height - 90});
+
+  // Right: the source moved by the result.
+  cv::Mat right = image(cv::Rect(panel, 0, panel, height));
+  cv::line(right, {0, 0}, {0, height}, kBlack, 1);
+  const auto moved = finitePoints(source, result.transform);
+  const View overlay = View::fit(target_points, panel, height);
+  drawPoints(right, overlay, target_points, Palette::target(), 2);
+  drawPoints(right, overlay, moved, Palette::source(), 1);
+  decorate(right, overlay);
+  const io::Pose2D pose = io::toPose(result.transform);
+  char line[200];
+  if (result.converged) {
+    std::snprintf(line, sizeof line, "converged: x %.3f m, y %.3f m, yaw %.2f deg; contour rmse %.3f m%s", pose.x,
+                  pose.y, pose.yaw * 180 / M_PI, result.contour_rmse, result.degenerate ? ", DEGENERATE" : "");
+    text(right, line, {15, 30}, 0.55);
+  } else {
+    text(right, "NOT CONVERGED:", {15, 30}, 0.6, Palette::warning());
+    std::string reason = result.reason;
+    for (int row = 0; !reason.empty() && row < 4; ++row) {  // wrap the reason
+      const std::size_t cut = reason.size() > 70 ? reason.rfind(' ', 70) : reason.size();
+      text(right, reason.substr(0, cut), {15, 56 + 24 * row}, 0.5, Palette::warning());
+      reason = cut < reason.size() ? reason.substr(cut + 1) : std::string();
+    }
+  }
+  return image;
+}
+
+cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const std::vector<Alignment> &alignments,
+                       int panel_width) {
+  const int n = std::max<int>(1, static_cast<int>(alignments.size()));
+  cv::Mat image(panel_width, panel_width * n, CV_8UC3, kWhite);
+  const auto target_points = finitePoints(target, Eigen::Matrix3d::Identity());
+  const View view = View::fit(target_points, panel_width, panel_width);
+  for (int k = 0; k < static_cast<int>(alignments.size()); ++k) {
+    cv::Mat panel = image(cv::Rect(k * panel_width, 0, panel_width, panel_width));
+    const Alignment &a = alignments[std::size_t(k)];
+    drawPoints(panel, view, target_points, Palette::target(), 2);
+    drawPoints(panel, view, finitePoints(source, a.transform), Palette::source(), 1);
+    decorate(panel, view);
+    const io::Pose2D pose = io::toPose(a.transform);
+    char line[160];
+    std::snprintf(line, sizeof line, "%s: %s", a.method.c_str(), a.converged ? "converged" : "NOT CONVERGED");
+    text(panel, line, {12, 28}, 0.65, a.converged ? kBlack : Palette::warning());
+    std::snprintf(line, sizeof line, "x %.3f  y %.3f  yaw %.2f deg", pose.x, pose.y, pose.yaw * 180 / M_PI);
+    text(panel, line, {12, 52}, 0.5);
+    if (k > 0) cv::line(panel, {0, 0}, {0, panel_width}, kBlack, 1);
+  }
+  return image;
+}
+
+cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates, const io::Trajectory &ground_truth,
+                         int width) {
+  const int map_height = width * 2 / 3, plot_height = width / 4;
+  cv::Mat image(map_height + plot_height, width, CV_8UC3, kWhite);
+  // Everything re-anchored at the ground truth's first pose.
+  const io::Pose2D anchor = ground_truth.empty() ? io::Pose2D{} : ground_truth.front().pose;
+  std::map<std::string, std::vector<Eigen::Vector2d>> paths;
+  std::vector<Eigen::Vector2d> all;
+  for (const auto &[name, trajectory] : estimates) {
+    if (trajectory.empty()) continue;
+    for (const io::StampedPose &p : trajectory) {
+      const io::Pose2D q = io::compose(anchor, io::between(trajectory.front().pose, p.pose));
+      paths[name].push_back({q.x, q.y});
+    }
+    all.insert(all.end(), paths[name].begin(), paths[name].end());
+  }
+  std::vector<Eigen::Vector2d> truth;
+  for (const io::StampedPose &p : ground_truth) truth.push_back({p.pose.x, p.pose.y});
+  all.insert(all.end(), truth.begin(), truth.end());
+  const View view = View::fit(all, width, map_height);
+  cv::Mat map = image(cv::Rect(0, 0, width, map_height));
+  auto polyline = [&](const std::vector<Eigen::Vector2d> &path, cv::Scalar colour, int thickness) {
+    for (std::size_t k = 1; k < path.size(); ++k)
+      cv::line(map, view.pixel(path[k - 1]), view.pixel(path[k]), colour, thickness, cv::LINE_AA);
+  };
+  polyline(truth, kBlack, 3);
+  std::vector<std::pair<std::string, cv::Scalar>> entries{{"ground truth", kBlack}};
+  std::size_t index = 0;
+  for (const auto &[name, path] : paths) {
+    polyline(path, segmentColour(index), 2);
+    entries.push_back({name, segmentColour(index++)});
+  }
+  decorate(map, view);
+  legend(map, entries, {15, 30});
+
+  // Position error along the distance travelled (ground truth's), per method.
+  cv::Mat plot = image(cv::Rect(0, map_height, width, plot_height));
+  cv::line(plot, {0, 0}, {width, 0}, kBlack, 1);
+  text(plot, "position error (m) along the distance travelled (m)", {50, 18}, 0.55);
+  std::map<std::string, std::vector<std::pair<double, double>>> errors;
+  double max_error = 0.01, max_distance = 1.0;
+  index = 0;
+  for (const auto &[name, trajectory] : estimates) {
+    if (trajectory.empty() || ground_truth.empty()) continue;
+    double travelled = 0.0;
+    std::size_t g = 0;
+    for (std::size_t k = 0; k < trajectory.size(); ++k) {
+      while (g + 1 < ground_truth.size() && ground_truth[g + 1].stamp <= trajectory[k].stamp) {
+        travelled += std::hypot(ground_truth[g + 1].pose.x - ground_truth[g].pose.x,
+                                ground_truth[g + 1].pose.y - ground_truth[g].pose.y);
+        ++g;
+      }
+      const Eigen::Vector2d &p = paths[name][k];
+      const double e = std::hypot(p.x() - ground_truth[g].pose.x, p.y() - ground_truth[g].pose.y);
+      errors[name].push_back({travelled, e});
+      max_error = std::max(max_error, e);
+      max_distance = std::max(max_distance, travelled);
+    }
+  }
+  const int left = 50, right = width - 20, top = 28, bottom = plot_height - 22;
+  char label[32];
+  std::snprintf(label, sizeof label, "%.2f", max_error);
+  text(plot, label, {2, top + 5}, 0.45);
+  std::snprintf(label, sizeof label, "%.0f", max_distance);
+  text(plot, label, {right - 30, plot_height - 4}, 0.45);
+  for (const auto &[name, series] : errors) {
+    const cv::Scalar colour = segmentColour(index++);
+    for (std::size_t k = 1; k < series.size(); ++k) {
+      auto at = [&](const std::pair<double, double> &s) {
+        return cv::Point(left + int(s.first / max_distance * (right - left)), bottom - int(s.second / max_error * (bottom - top)));
+      };
+      cv::line(plot, at(series[k - 1]), at(series[k]), colour, 2, cv::LINE_AA);
+    }
+  }
+  return image;
+}
+
+void writeImage(const std::string &path, const cv::Mat &image) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, image);
+  } catch (const cv::Exception &error) {
+    throw std::runtime_error(path + ": cannot write image: " + error.what());
+  }
+  if (!ok) throw std::runtime_error(path + ": cannot write image");
+}
+
+}  // namespace contour_reg::drawing

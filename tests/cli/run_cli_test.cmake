@@ -1,0 +1,72 @@
+# Runs the contour_reg tool's subcommands on the bundled log and checks exit codes and outputs.
+set(LOG ${SOURCE_DIR}/data/office/L-hokuyo-2hz.clf)
+set(GT ${SOURCE_DIR}/data/office/L-hokuyo-2hz.gt.tum)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+function(expect_run code)
+  execute_process(COMMAND ${TOOL} ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL code)
+    message(FATAL_ERROR "contour_reg ${ARGN}: exit ${result}, expected ${code}\n${out}\n${err}")
+  endif()
+  set(LAST_OUT "${out}" PARENT_SCOPE)
+  set(LAST_ERR "${err}" PARENT_SCOPE)
+endfunction()
+
+function(expect_match text pattern)
+  if(NOT text MATCHES "${pattern}")
+    message(FATAL_ERROR "expected /${pattern}/ in:\n${text}")
+  endif()
+endfunction()
+
+# Every subcommand has --help.
+foreach(command features simulate odometry evaluate compare relations debug)
+  expect_run(0 ${command} --help)
+endforeach()
+
+# odometry writes one TUM line per scan.
+expect_run(0 odometry ${LOG} --method contour --output ${WORK_DIR}/contour.tum --debug-dir ${WORK_DIR}/debug)
+file(STRINGS ${WORK_DIR}/contour.tum lines REGEX "^[0-9]")
+list(LENGTH lines count)
+if(NOT count EQUAL 103)
+  message(FATAL_ERROR "odometry wrote ${count} poses, expected 103")
+endif()
+file(GLOB pictures ${WORK_DIR}/debug/pair_*.png)
+if(NOT pictures)
+  message(FATAL_ERROR "odometry --debug-dir wrote no pair image")
+endif()
+
+# evaluate prints the paper's metric against the ground truth.
+expect_run(0 evaluate ${WORK_DIR}/contour.tum --gt ${GT})
+expect_match("${LAST_OUT}" "end-point error: [0-9.]+ m over 25\\.[0-9]+ m")
+expect_match("${LAST_OUT}" "ATE after SE\\(2\\) alignment")
+
+# compare writes the table, the CSV, a trajectory per method and the trajectory picture.
+expect_run(0 compare ${LOG} --methods contour icp --out ${WORK_DIR}/compare)
+expect_match("${LAST_OUT}" "\\| L-hokuyo-2hz \\| contour \\|")
+expect_match("${LAST_OUT}" "\\| L-hokuyo-2hz \\| icp \\|")
+foreach(file table.md results.csv L-hokuyo-2hz.contour.tum L-hokuyo-2hz.icp.tum L-hokuyo-2hz.trajectories.png)
+  if(NOT EXISTS ${WORK_DIR}/compare/${file})
+    message(FATAL_ERROR "compare did not write ${file}")
+  endif()
+endforeach()
+
+# debug draws the scan and the pair.
+expect_run(0 debug ${LOG} --scan 30 --out ${WORK_DIR}/pictures)
+foreach(file scan_30.png pair_29_30.png)
+  if(NOT EXISTS ${WORK_DIR}/pictures/${file})
+    message(FATAL_ERROR "debug did not write ${file}")
+  endif()
+endforeach()
+
+# Bad input: a missing file, a file with no scan, an unknown method, an out-of-range scan.
+expect_run(2 odometry ${WORK_DIR}/missing.clf --output ${WORK_DIR}/x.tum)
+expect_match("${LAST_ERR}" "missing.clf")
+file(WRITE ${WORK_DIR}/garbage.clf "not a log\n\x01\x02\n")
+expect_run(2 odometry ${WORK_DIR}/garbage.clf --output ${WORK_DIR}/x.tum)
+expect_match("${LAST_ERR}" "garbage.clf: no usable scan")
+expect_run(105 odometry ${LOG} --method nonsense --output ${WORK_DIR}/x.tum)
+expect_run(2 debug ${LOG} --scan 100000 --out ${WORK_DIR}/pictures)
+expect_run(105 evaluate ${WORK_DIR}/contour.tum)  # CLI11 validation error
+expect_match("${LAST_ERR}" "give --gt or --relations")
+message(STATUS "cli commands: all checks passed")

@@ -1,0 +1,90 @@
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "contour_reg/drawing/debug_images.h"
+#include "scenes.h"
+
+namespace contour_reg::drawing {
+namespace {
+
+bool hasColour(const cv::Mat &image, cv::Point at, int radius, const cv::Scalar &colour) {
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const cv::Point p = at + cv::Point(dx, dy);
+      if (p.x < 0 || p.y < 0 || p.x >= image.cols || p.y >= image.rows) continue;
+      const cv::Vec3b v = image.at<cv::Vec3b>(p);
+      if (v[0] == colour[0] && v[1] == colour[1] && v[2] == colour[2]) return true;
+    }
+  return false;
+}
+
+int countColour(const cv::Mat &image, const cv::Scalar &colour) {
+  int n = 0;
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x) n += hasColour(image, {x, y}, 0, colour);
+  return n;
+}
+
+TEST(DebugImages, ScanImageMarksEveryKnownCornerVertexInTheSpecialPointColour) {
+  const test::RoomWithBoxes room;
+  const auto pose = test::pose2d(0.0, 0.0, 0.0);
+  const LaserScan scan = test::scanFrom(room.world, pose);
+  const ContourParams params;
+  const ContourFeatures features = extractContourFeatures(scan, params);
+  const cv::Mat image = drawScan(scan, features, params, "room", 1200);
+  EXPECT_EQ(image.cols, 1200);
+  EXPECT_EQ(image.rows, 900 + 240);
+  // Same view as drawScan: fitted to the scan's points in the top panel.
+  std::vector<Eigen::Vector2d> points;
+  for (const Complex &c : polarCode(scan))
+    if (isFinite(c)) points.push_back(toEigen(c));
+  const View view = View::fit(points, 1200, 900);
+  const auto corners = room.visibleCorners(pose);
+  ASSERT_GE(corners.size(), 4u);
+  for (const Eigen::Vector2d &corner : corners)
+    EXPECT_TRUE(hasColour(image, view.pixel(corner), 2, Palette::specialPoint())) << corner.transpose();
+  EXPECT_FALSE(hasColour(image, view.pixel({0.0, 0.0}), 3, Palette::specialPoint()));  // the sensor is no corner
+}
+
+TEST(DebugImages, AScanWithoutSpecialPointsSaysSo) {
+  simulation::World circle;
+  circle.addCircle({0.0, 0.0}, 4.0);
+  const LaserScan scan = test::scanFrom(circle, test::pose2d(0.5, 0.0, 0.0));
+  const ContourParams params;
+  const ContourFeatures features = extractContourFeatures(scan, params);
+  ASSERT_TRUE(features.special_points.empty());
+  const cv::Mat image = drawScan(scan, features, params, "circle");
+  EXPECT_GT(countColour(image(cv::Rect(0, 60, 1200, 40)), Palette::warning()), 100);  // the red notice line
+  EXPECT_GT(countColour(image, {150, 150, 150}), 50);  // the raw points are drawn
+}
+
+TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
+  const simulation::World world = test::furnishedRoom();
+  const LaserScan a = test::scanFrom(world, test::pose2d(0, 0, 0)), b = test::scanFrom(world, test::pose2d(0.2, 0.1, 5));
+  const ContourParams params;
+  const ContourFeatures fa = extractContourFeatures(a, params), fb = extractContourFeatures(b, params);
+  std::mt19937 rng(1);
+  const RegistrationResult result = registerContours(fb, fa, RegistrationParams{}, rng);
+  ASSERT_TRUE(result.converged);
+  const cv::Mat pair = drawPair(a, b, fa, fb, result, "pair", 1600);
+  EXPECT_EQ(pair.cols, 1600);
+  EXPECT_GT(countColour(pair, Palette::inlier()), 20);
+  EXPECT_GT(countColour(pair, Palette::source()), 500);
+  const cv::Mat sides = drawAlignments(a, b, {{"contour", result.transform, true}, {"none", Eigen::Matrix3d::Identity(), false}}, 500);
+  EXPECT_EQ(sides.cols, 1000);
+  EXPECT_EQ(sides.rows, 500);
+}
+
+TEST(DebugImages, TrajectoriesAreDrawnOverGroundTruth) {
+  io::Trajectory truth, estimate;
+  for (int k = 0; k < 50; ++k) {
+    truth.push_back({double(k), {0.2 * k, 0.0, 0.0}});
+    estimate.push_back({double(k), {0.2 * k, 0.01 * k, 0.0}});
+  }
+  const cv::Mat image = drawTrajectories({{"contour", estimate}}, truth, 900);
+  EXPECT_EQ(image.cols, 900);
+  EXPECT_GT(countColour(image, {0, 0, 0}), 300);
+}
+
+}  // namespace
+}  // namespace contour_reg::drawing
