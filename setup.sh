@@ -8,7 +8,8 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libeigen3-dev libpcl-dev libflann-dev libopencv-dev
-          libcli11-dev zlib1g-dev libgtest-dev libbenchmark-dev)
+          libcli11-dev zlib1g-dev libgtest-dev libbenchmark-dev
+          librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev)
 
 install_packages() {
   local missing=()
@@ -33,7 +34,10 @@ case "${1:-build}" in
   build) build ;;
   run)
     build
-    ./build/bin/contour_reg features data/office/L-hokuyo-2hz.clf --scan 0
+    # Contour odometry against PCL ICP and NDT2D on the bundled simulated office log:
+    # table, CSV, trajectories and their picture in build/results/office.
+    ./build/bin/contour_reg compare data/office/L-hokuyo-2hz.clf --methods contour contour+icp icp ndt2d \
+        --out build/results/office
     ;;
   test)
     build
