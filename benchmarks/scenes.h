@@ -8,22 +8,10 @@
 
 #include "contour_reg/core/laser_scan.h"
 #include "contour_reg/simulation/lidar.h"
+#include "contour_reg/simulation/office.h"
 #include "contour_reg/simulation/world.h"
 
 namespace contour_reg::bench {
-
-inline simulation::World furnishedRoom() {
-  simulation::World world;
-  world.addPolygon({{-6.0, -4.0}, {7.0, -4.0}, {7.0, 1.0}, {7.6, 1.0}, {7.6, 2.2}, {7.0, 2.2},
-                    {7.0, 5.0}, {-2.0, 5.0}, {-2.0, 5.8}, {-3.0, 5.8}, {-3.0, 5.0}, {-6.0, 5.0}});
-  world.addBox({-4.8, -3.2}, {-3.6, -2.4});
-  world.addBox({2.0, 2.5}, {3.4, 3.3});
-  world.addBox({4.2, -2.8}, {5.0, -1.6});
-  world.addPolygon({{-2.5, 1.5}, {-1.9, 1.5}, {-1.9, 2.1}, {-2.5, 2.1}});
-  world.addPolygon({{0.8, -1.8}, {1.6, -2.3}, {2.0, -1.7}});
-  world.addCircle({-4.0, 3.0}, 0.3);
-  return world;
-}
 
 struct ScanPair {
   LaserScan target, source;
@@ -31,7 +19,7 @@ struct ScanPair {
 };
 
 inline ScanPair scanPair(int beams) {
-  const simulation::World world = furnishedRoom();
+  const simulation::World world = simulation::makeFurnishedRoom();
   simulation::LidarModel model = simulation::LidarModel::hokuyoUtm30lx();
   model.beams = beams;
   std::mt19937 rng(7);

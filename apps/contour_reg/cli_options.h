@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "contour_reg/io/read_log.h"
+#include "contour_reg/odometry/odometry.h"
 #include "contour_reg/odometry/scan_matcher.h"
 
 namespace contour_reg::cli {
@@ -52,6 +53,18 @@ inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
       ->capture_default_str();
   command.add_option("--ndt-resolution", options.ndt_resolution, "NDT/NDT2D: cell size (m)")->capture_default_str();
   command.add_option("--iterations", options.iterations, "ICP/GICP/NDT: max iterations")->capture_default_str();
+}
+
+/// --guess: where each registration's initial guess comes from.
+inline void addGuessOption(CLI::App &command, std::string &guess) {
+  command.add_option("--guess", guess, "Initial guess: zero, odom (wheel odometry), velocity")
+      ->check(CLI::IsMember({"zero", "odom", "velocity"}))
+      ->capture_default_str();
+}
+inline odometry::GuessSource guessSource(const std::string &name) {
+  if (name == "odom") return odometry::GuessSource::kOdometry;
+  if (name == "velocity") return odometry::GuessSource::kConstantVelocity;
+  return odometry::GuessSource::kZero;
 }
 
 /// A check that accepts the method names of odometry::methodNames().

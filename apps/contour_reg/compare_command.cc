@@ -51,6 +51,7 @@ struct Row {
   std::size_t registrations = 0, failures = 0, degenerate = 0;
   double median_ms = 0.0, p95_ms = 0.0;
   evaluation::Evaluation evaluation;
+  io::Trajectory trajectory;
 };
 
 std::string stemOf(const std::string &path) {
@@ -175,9 +176,7 @@ int runCompare(const CompareOptions &options) {
   std::atomic<std::size_t> next{0};
   std::mutex print;
   odometry::OdometryOptions run_options;
-  run_options.guess = options.guess == "odom"       ? odometry::GuessSource::kOdometry
-                      : options.guess == "velocity" ? odometry::GuessSource::kConstantVelocity
-                                                    : odometry::GuessSource::kZero;
+  run_options.guess = guessSource(options.guess);
   run_options.keyframes = options.keyframes;
   auto worker = [&]() {
     for (std::size_t j = next++; j < jobs.size(); j = next++) {
@@ -195,6 +194,7 @@ int runCompare(const CompareOptions &options) {
       row.p95_ms = percentile(run.stats.milliseconds, 0.95);
       row.evaluation = evaluation::evaluate(run.trajectory, input.ground_truth ? &*input.ground_truth : nullptr,
                                             input.relations ? &*input.relations : nullptr, options.local_dt);
+      row.trajectory = run.trajectory;
       std::lock_guard<std::mutex> lock(print);
       std::fprintf(stderr, "  done: %s / %s (%zu failed)\n", input.name.c_str(), jobs[j].method.c_str(), row.failures);
     }
@@ -221,8 +221,8 @@ int runCompare(const CompareOptions &options) {
   for (const Input &input : inputs) {
     if (!input.ground_truth) continue;
     std::map<std::string, io::Trajectory> estimates;
-    for (const std::string &method : options.methods)
-      estimates[method] = io::readTum((fs::path(options.out) / (input.name + "." + method + ".tum")).string());
+    for (const Row &row : rows)
+      if (row.input == input.name && row.method != kWheelOdometry) estimates[row.method] = row.trajectory;
     drawing::writeImage((fs::path(options.out) / (input.name + ".trajectories.png")).string(),
                         drawing::drawTrajectories(estimates, *input.ground_truth));
   }
@@ -244,9 +244,7 @@ void addCompareCommand(CLI::App &app) {
   command->add_option("--relations", options->relations,
                       "Relations file per input, in order (default: INPUT_STEM.relations beside the input)");
   command->add_option("--out", options->out, "Output folder")->required();
-  command->add_option("--guess", options->guess, "Initial guess: zero, odom, velocity")
-      ->check(CLI::IsMember({"zero", "odom", "velocity"}))
-      ->capture_default_str();
+  addGuessOption(*command, options->guess);
   command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
   command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");
   command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")

@@ -26,12 +26,6 @@ struct OdometryCommandOptions {
   MethodOptions methods;
 };
 
-odometry::GuessSource guessSource(const std::string &name) {
-  if (name == "odom") return odometry::GuessSource::kOdometry;
-  if (name == "velocity") return odometry::GuessSource::kConstantVelocity;
-  return odometry::GuessSource::kZero;
-}
-
 int runOdometryCommand(const OdometryCommandOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const io::ScanLog log = io::readLog(options.input, options.read);
@@ -73,9 +67,7 @@ void addOdometryCommand(CLI::App &app) {
   command->add_option("input", options->input, "CARMEN log, ROS bag (.bag) or folder of PCD scans")->required();
   command->add_option("--method,-m", options->method, "Registration method")->check(methodCheck())->capture_default_str();
   command->add_option("--output,-o", options->output, "TUM trajectory to write")->required();
-  command->add_option("--guess", options->guess, "Initial guess: zero, odom (wheel odometry), velocity")
-      ->check(CLI::IsMember({"zero", "odom", "velocity"}))
-      ->capture_default_str();
+  addGuessOption(*command, options->guess);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
   command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")

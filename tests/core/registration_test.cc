@@ -43,7 +43,7 @@ class RegistrationTest : public ::testing::TestWithParam<Variant> {
   // Registers the scan from target_pose * motion onto the scan from target_pose, in both
   // directions. Returns how many converged; every converged one must be within tolerance.
   int checkMotions(double noise, double tolerance, double tolerance_deg, int trials) {
-    const simulation::World world = test::furnishedRoom();
+    const simulation::World world = simulation::makeFurnishedRoom();
     std::mt19937 prng(42);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     int converged = 0;
@@ -93,13 +93,13 @@ INSTANTIATE_TEST_SUITE_P(
     Variants, RegistrationTest,
     ::testing::Combine(::testing::Values(TransformModel::kRigid, TransformModel::kAffine),
                        ::testing::Values(FragmentDistance::kModulus, FragmentDistance::kReal)),
-    [](const ::testing::TestParamInfo<Variant> &info) {
-      return std::string(std::get<0>(info.param) == TransformModel::kRigid ? "Rigid" : "Affine") +
-             (std::get<1>(info.param) == FragmentDistance::kModulus ? "Modulus" : "Real");
+    [](const ::testing::TestParamInfo<Variant> &variant) {
+      return std::string(std::get<0>(variant.param) == TransformModel::kRigid ? "Rigid" : "Affine") +
+             (std::get<1>(variant.param) == FragmentDistance::kModulus ? "Modulus" : "Real");
     });
 
 TEST(Registration, SameSeedGivesTheSameAnswer) {
-  const simulation::World world = test::furnishedRoom();
+  const simulation::World world = simulation::makeFurnishedRoom();
   const ContourFeatures a = extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 10), 0.01, 1), ContourParams{});
   const ContourFeatures b = extractContourFeatures(test::scanFrom(world, test::pose2d(0.5, 0.2, 30), 0.01, 2), ContourParams{});
   std::mt19937 rng1(5), rng2(5);

@@ -59,7 +59,7 @@ TEST(DebugImages, AScanWithoutSpecialPointsSaysSo) {
 }
 
 TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
-  const simulation::World world = test::furnishedRoom();
+  const simulation::World world = simulation::makeFurnishedRoom();
   const LaserScan a = test::scanFrom(world, test::pose2d(0, 0, 0)), b = test::scanFrom(world, test::pose2d(0.2, 0.1, 5));
   const ContourParams params;
   const ContourFeatures fa = extractContourFeatures(a, params), fb = extractContourFeatures(b, params);

@@ -18,7 +18,7 @@ struct Sequence {
 };
 
 Sequence roomSequence(int scans = 20, double noise = 0.01) {
-  const simulation::World world = test::furnishedRoom();
+  const simulation::World world = simulation::makeFurnishedRoom();
   Sequence s;
   for (int k = 0; k < scans; ++k) {
     const double x = -3.0 + 0.2 * k, y = -1.0 + 0.4 * std::sin(0.15 * k), yaw_deg = 10.0 * std::sin(0.1 * k);
@@ -84,7 +84,7 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhenItIsTheGuess) {
 
 TEST(ScanMatcher, EveryMethodRegistersAPairOfTheRoom) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  const simulation::World world = test::furnishedRoom();
+  const simulation::World world = simulation::makeFurnishedRoom();
   const LaserScan target = test::scanFrom(world, test::pose2d(0.0, 0.0, 0.0), 0.0);
   const LaserScan source = test::scanFrom(world, test::pose2d(0.1, 0.05, 2.0), 0.0);
   for (const std::string &name : methodNames()) {

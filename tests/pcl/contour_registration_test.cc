@@ -38,7 +38,7 @@ struct ScanPair {
   Eigen::Isometry2d motion = test::pose2d(0.35, -0.15, 12);
   Cloud::Ptr target, source;
   ScanPair() {
-    const simulation::World world = test::furnishedRoom();
+    const simulation::World world = simulation::makeFurnishedRoom();
     const Eigen::Isometry2d base = test::pose2d(0.5, -0.4, 20);
     target = toCloud(test::scanFrom(world, base, 0.01, 1));
     source = toCloud(test::scanFrom(world, base * motion, 0.01, 2));
@@ -115,7 +115,7 @@ TEST(ContourRegistration, StandsWhereIcpAndNdtStand) {
 }
 
 TEST(ContourRegistration, ReusesThePreviousSourceAsTarget) {
-  const simulation::World world = test::furnishedRoom();
+  const simulation::World world = simulation::makeFurnishedRoom();
   ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
   Cloud::Ptr previous = toCloud(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1));
   for (int k = 1; k <= 3; ++k) {
@@ -130,8 +130,10 @@ TEST(ContourRegistration, ReusesThePreviousSourceAsTarget) {
                                     test::pose2d(0.2 * k, 0.05 * k, 3 * k);
     EXPECT_LT((t.block<2, 1>(0, 3).cast<double>() - truth.translation()).norm(), 0.02);
     // The target's special points are those the previous align() found in this cloud.
-    if (k > 1) EXPECT_EQ(registration.getTargetFeatures().special_points.size(),
-                         extractContourFeatures(polarCodeFromCloud(*previous), ContourParams{}).special_points.size());
+    if (k > 1) {
+      EXPECT_EQ(registration.getTargetFeatures().special_points.size(),
+                extractContourFeatures(polarCodeFromCloud(*previous), ContourParams{}).special_points.size());
+    }
     previous = current;
   }
 }

@@ -9,6 +9,7 @@
 
 #include "contour_reg/core/laser_scan.h"
 #include "contour_reg/simulation/lidar.h"
+#include "contour_reg/simulation/office.h"
 #include "contour_reg/simulation/world.h"
 
 namespace contour_reg::test {
@@ -54,21 +55,6 @@ struct RoomWithBoxes {
     return visible;
   }
 };
-
-/// A furnished room for registration: walls with a door recess, boxes, a pillar and a
-/// round bin, so scans from anywhere in it see several corners.
-inline simulation::World furnishedRoom() {
-  simulation::World world;
-  world.addPolygon({{-6.0, -4.0}, {7.0, -4.0}, {7.0, 1.0}, {7.6, 1.0}, {7.6, 2.2}, {7.0, 2.2},
-                    {7.0, 5.0}, {-2.0, 5.0}, {-2.0, 5.8}, {-3.0, 5.8}, {-3.0, 5.0}, {-6.0, 5.0}});
-  world.addBox({-4.8, -3.2}, {-3.6, -2.4});
-  world.addBox({2.0, 2.5}, {3.4, 3.3});
-  world.addBox({4.2, -2.8}, {5.0, -1.6});
-  world.addPolygon({{-2.5, 1.5}, {-1.9, 1.5}, {-1.9, 2.1}, {-2.5, 2.1}});
-  world.addPolygon({{0.8, -1.8}, {1.6, -2.3}, {2.0, -1.7}});  // a triangular cabinet
-  world.addCircle({-4.0, 3.0}, 0.3);
-  return world;
-}
 
 inline LaserScan scanFrom(const simulation::World &world, const Eigen::Isometry2d &pose,
                           double noise = 0.0, unsigned seed = 42) {

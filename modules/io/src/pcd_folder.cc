@@ -8,6 +8,7 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
 
+#include "log_assembly.h"
 #include "text_lines.h"
 
 namespace contour_reg::io {
@@ -124,10 +125,7 @@ ScanLog readPcdFolder(const std::string &folder, double max_range) {
   if (log.entries.empty())
     throw ReadError(folder + ": no usable PCD scan among " + std::to_string(files.size()) + " .pcd files" +
                     (log.report.problems.empty() ? "" : " (first problem: " + log.report.problems.front() + ")"));
-  for (std::size_t k = 1; k < log.entries.size(); ++k)
-    if (log.entries[k].scan.stamp < log.entries[k - 1].scan.stamp) ++log.report.reordered;
-  std::stable_sort(log.entries.begin(), log.entries.end(),
-                   [](const LogEntry &a, const LogEntry &b) { return a.scan.stamp < b.scan.stamp; });
+  detail::finishLog(log, {});  // stamp order; PCD scans carry no odometry
   return log;
 }
 

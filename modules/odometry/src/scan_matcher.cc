@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 
-#include <pcl/filters/filter.h>
 #include <pcl/registration/gicp.h>
 #include <pcl/registration/icp.h>
 #include <pcl/registration/ndt.h>
@@ -116,11 +115,10 @@ ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool 
     : name_(std::move(name)), registration_(std::move(registration)), wants_beam_order_(wants_beam_order) {}
 
 Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan) {
-  Cloud::Ptr cloud = beamCloud(scan);
-  if (wants_beam_order_) return cloud;
-  auto finite = pcl::make_shared<Cloud>();
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(*cloud, *finite, kept);
+  if (wants_beam_order_) return beamCloud(scan);
+  auto finite = pcl::make_shared<Cloud>();  // ICP and NDT take the valid beams only
+  for (const Complex &c : polarCode(scan))
+    if (isFinite(c)) finite->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
   return finite;
 }
 

@@ -55,4 +55,17 @@ World makeOfficeWorld() {
   return world;
 }
 
+World makeFurnishedRoom() {
+  World world;
+  world.addPolygon({{-6.0, -4.0}, {7.0, -4.0}, {7.0, 1.0}, {7.6, 1.0}, {7.6, 2.2}, {7.0, 2.2},
+                    {7.0, 5.0}, {-2.0, 5.0}, {-2.0, 5.8}, {-3.0, 5.8}, {-3.0, 5.0}, {-6.0, 5.0}});
+  world.addBox({-4.8, -3.2}, {-3.6, -2.4});
+  world.addBox({2.0, 2.5}, {3.4, 3.3});
+  world.addBox({4.2, -2.8}, {5.0, -1.6});
+  world.addPolygon({{-2.5, 1.5}, {-1.9, 1.5}, {-1.9, 2.1}, {-2.5, 2.1}});
+  world.addPolygon({{0.8, -1.8}, {1.6, -2.3}, {2.0, -1.7}});  // a triangular cabinet
+  world.addCircle({-4.0, 3.0}, 0.3);
+  return world;
+}
+
 }  // namespace contour_reg::simulation
