@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libeigen3-dev libpcl-dev libflann-dev libopencv-dev
-          libcli11-dev zlib1g-dev libgtest-dev libbenchmark-dev
+          libcli11-dev zlib1g-dev libyaml-cpp-dev libgtest-dev libbenchmark-dev
           librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev)
 
 install_packages() {

@@ -29,5 +29,6 @@ void addOdometryCommand(CLI::App &app);
 void addEvaluateCommand(CLI::App &app);
 void addCompareCommand(CLI::App &app);
 void addDebugCommand(CLI::App &app);
+void addExperimentCommand(CLI::App &app);
 
 }  // namespace contour_reg::cli

@@ -15,6 +15,7 @@ int main(int argc, char **argv) {
   contour_reg::cli::addCompareCommand(app);
   contour_reg::cli::addRelationsCommand(app);
   contour_reg::cli::addDebugCommand(app);
+  contour_reg::cli::addExperimentCommand(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

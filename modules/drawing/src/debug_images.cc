@@ -335,6 +335,60 @@ cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates,
   return image;
 }
 
+cv::Mat drawWorld(const simulation::World &world, const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                  int width) {
+  std::vector<Eigen::Vector2d> extent;
+  const simulation::OccupancyGrid *grid = world.grid();
+  if (grid) {
+    extent.push_back(grid->origin());
+    extent.push_back(grid->origin() + grid->resolution() * Eigen::Vector2d(grid->width(), grid->height()));
+  }
+  for (const simulation::Segment &s : world.segments()) extent.insert(extent.end(), {s.a, s.b});
+  for (const auto &[name, path] : paths) extent.insert(extent.end(), path.begin(), path.end());
+  const int height = width * 3 / 4;
+  const View view = View::fit(extent, width, height);
+  cv::Mat image(height, width, CV_8UC3, kWhite);
+  if (grid) {  // every pixel looks up its cell
+    for (int row = 0; row < height; ++row) {
+      for (int col = 0; col < width; ++col) {
+        const Eigen::Vector2d p = view.origin + Eigen::Vector2d(col + 0.5, height - row - 0.5) / view.scale;
+        const Eigen::Vector2i c = grid->cellOf(p);
+        if (!grid->contains(c.x(), c.y())) continue;
+        const auto cell = grid->cell(c.x(), c.y());
+        if (cell == simulation::OccupancyGrid::Cell::kOccupied)
+          image.at<cv::Vec3b>(row, col) = {0, 0, 0};
+        else if (cell == simulation::OccupancyGrid::Cell::kUnknown)
+          image.at<cv::Vec3b>(row, col) = {215, 215, 215};
+      }
+    }
+  }
+  for (const simulation::Segment &s : world.segments())
+    cv::line(image, view.pixel(s.a), view.pixel(s.b), kBlack, 2, cv::LINE_AA);
+  for (const simulation::Circle &c : world.circles())
+    cv::circle(image, view.pixel(c.centre), std::max(1, static_cast<int>(c.radius * view.scale)), kBlack, 2, cv::LINE_AA);
+  std::vector<std::pair<std::string, cv::Scalar>> entries;
+  std::size_t index = 0;
+  for (const auto &[name, path] : paths) {
+    const cv::Scalar colour = segmentColour(index++);
+    for (std::size_t k = 1; k < path.size(); ++k) {
+      const bool last = k + 1 == path.size();
+      if (last)
+        cv::arrowedLine(image, view.pixel(path[k - 1]), view.pixel(path[k]), colour, 3, cv::LINE_AA, 0,
+                        std::min(0.5, 15.0 / std::max(1.0, (path[k] - path[k - 1]).norm() * view.scale)));
+      else
+        cv::line(image, view.pixel(path[k - 1]), view.pixel(path[k]), colour, 3, cv::LINE_AA);
+    }
+    if (!path.empty()) {
+      cv::circle(image, view.pixel(path.front()), 7, colour, -1, cv::LINE_AA);
+      text(image, name, view.pixel(path.front()) + cv::Point(9, -9), 0.7, colour);
+    }
+    entries.push_back({"path " + name, colour});
+  }
+  decorate(image, view);
+  legend(image, entries, {15, 30});
+  return image;
+}
+
 void writeImage(const std::string &path, const cv::Mat &image) {
   bool ok = false;
   try {

@@ -1,5 +1,6 @@
 #include "contour_reg/simulation/lidar.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -25,6 +26,11 @@ LidarModel LidarModel::ydlidarX4() {
 
 LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const LidarModel &model,
                        std::mt19937 &rng) {
+  return simulateScan(world, [&pose](std::size_t) { return pose; }, model, rng);
+}
+
+LaserScan simulateScan(const World &world, const std::function<Eigen::Isometry2d(std::size_t)> &pose_of_beam,
+                       const LidarModel &model, std::mt19937 &rng) {
   LaserScan scan;
   scan.angle_min = -0.5 * model.field_of_view;
   scan.angle_increment = model.angleIncrement();
@@ -33,11 +39,11 @@ LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const 
   scan.ranges.resize(static_cast<std::size_t>(std::max(model.beams, 0)));
   std::normal_distribution<double> noise(0.0, model.range_noise > 0.0 ? model.range_noise : 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  const Eigen::Vector2d origin = pose.translation();
-  const double heading = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
   for (std::size_t n = 0; n < scan.ranges.size(); ++n) {
+    const Eigen::Isometry2d pose = pose_of_beam(n);
+    const double heading = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
     const double angle = heading + scan.bearing(n);
-    double range = world.castRay(origin, {std::cos(angle), std::sin(angle)});
+    double range = world.castRay(pose.translation(), {std::cos(angle), std::sin(angle)});
     if (model.range_noise > 0.0 && std::isfinite(range)) range += noise(rng);
     if (model.dropout > 0.0 && uniform(rng) < model.dropout) range = std::numeric_limits<double>::infinity();
     const bool valid = std::isfinite(range) && range >= model.range_min && range < model.range_max;

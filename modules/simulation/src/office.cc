@@ -44,10 +44,10 @@ World makeOfficeWorld() {
   world.addBox(V(15.5, 13.5), V(17.2, 15.0));
   world.addPolygon({V(20.0, 12.0), V(23.0, 12.0), V(23.0, 12.6), V(20.6, 12.6), V(20.6, 14.5), V(20.0, 14.5)});
   world.addPolygon({V(26.0, 11.0), V(27.2, 10.4), V(27.8, 11.6), V(26.6, 12.2)});  // a turned cabinet
-  // Pillars in the corridor and rooms, square and round; round bins and plants.
-  world.addBox(V(9.0, 7.2), V(9.4, 7.6));
-  world.addBox(V(20.5, 7.4), V(20.9, 7.8));
-  world.addCircle(V(15.0, 7.6), 0.25);
+  // Pillars along the corridor walls, square and round; round bins and plants.
+  world.addBox(V(9.0, 6.0), V(9.4, 6.4));
+  world.addBox(V(20.5, 8.6), V(20.9, 9.0));
+  world.addCircle(V(16.5, 6.45), 0.25);
   world.addCircle(V(4.0, 4.5), 0.3);
   world.addCircle(V(20.0, 2.0), 0.4);
   world.addCircle(V(27.0, 14.0), 0.35);

@@ -1,5 +1,6 @@
 #include "contour_reg/simulation/world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -47,6 +48,20 @@ double World::castRay(const Eigen::Vector2d &origin, const Eigen::Vector2d &dire
   double best = std::numeric_limits<double>::infinity();
   for (const Segment &s : segments_) best = std::min(best, hitSegment(s, origin, direction));
   for (const Circle &c : circles_) best = std::min(best, hitCircle(c, origin, direction));
+  if (grid_) best = std::min(best, grid_->castRay(origin, direction));
+  return best;
+}
+
+double World::clearance(const Eigen::Vector2d &p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Segment &s : segments_) {
+    const Eigen::Vector2d edge = s.b - s.a;
+    const double length2 = edge.squaredNorm();
+    const double u = length2 > 0.0 ? std::clamp((p - s.a).dot(edge) / length2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (s.a + u * edge - p).norm());
+  }
+  for (const Circle &c : circles_) best = std::min(best, std::max(0.0, (p - c.centre).norm() - c.radius));
+  if (grid_) best = std::min(best, grid_->clearance(p));
   return best;
 }
 

@@ -17,6 +17,7 @@
 #include "contour_reg/core/laser_scan.h"
 #include "contour_reg/core/registration.h"
 #include "contour_reg/io/trajectory.h"
+#include "contour_reg/simulation/world.h"
 
 namespace contour_reg::drawing {
 
@@ -68,6 +69,11 @@ cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const s
 /// ground truth's first pose; below, the position error along the distance travelled.
 cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates, const io::Trajectory &ground_truth,
                          int width = 1200);
+
+/// A map (segments, circles, occupancy grid: obstacles black, unknown grey) with named
+/// paths drawn over it, each from a circle at its start to an arrow at its end.
+cv::Mat drawWorld(const simulation::World &world, const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                  int width = 1200);
 
 /// Writes `image` to `path` (format by extension). Throws std::runtime_error naming the file.
 void writeImage(const std::string &path, const cv::Mat &image);

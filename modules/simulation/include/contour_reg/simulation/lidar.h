@@ -2,6 +2,7 @@
 /// @file lidar.h
 /// A simulated 2-D LIDAR: beam geometry, range limits, Gaussian range noise and dropout.
 
+#include <functional>
 #include <random>
 #include <string>
 
@@ -33,5 +34,10 @@ struct LidarModel {
 /// reads NaN. `rng` drives noise and dropout; a fixed seed fixes the scan.
 LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const LidarModel &model,
                        std::mt19937 &rng);
+
+/// Simulates one scan taken while moving: beam n is cast from `pose_of_beam(n)`, the sensor
+/// pose at the moment that beam fires, so the scan is distorted as a real one is.
+LaserScan simulateScan(const World &world, const std::function<Eigen::Isometry2d(std::size_t)> &pose_of_beam,
+                       const LidarModel &model, std::mt19937 &rng);
 
 }  // namespace contour_reg::simulation

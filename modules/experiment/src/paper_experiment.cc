@@ -1,0 +1,152 @@
+#include "contour_reg/experiment/paper_experiment.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <random>
+#include <thread>
+
+#include "contour_reg/evaluation/metrics.h"
+#include "contour_reg/io/pose2d.h"
+
+namespace contour_reg::experiment {
+
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+io::Trajectory wheelOdometry(const io::ScanLog &log) {
+  io::Trajectory trajectory;
+  for (const io::LogEntry &entry : log.entries)
+    if (entry.odometry && log.entries.front().odometry)
+      trajectory.push_back({entry.scan.stamp, io::between(*log.entries.front().odometry, *entry.odometry)});
+  return trajectory;
+}
+
+struct Arrival {
+  std::string path;
+  double rate;
+  int arrival;
+};
+
+}  // namespace
+
+std::optional<double> paperMedianPercent(const std::string &path, double rate) {
+  // Table 1 of the paper: median over ten arrivals, per LIDAR rotation rate.
+  static const std::map<double, std::map<std::string, double>> table = {
+      {5.0, {{"S", 6.8}, {"L", 14.1}, {"Y", 4.4}, {"O", 5.4}}},
+      {2.0, {{"S", 2.5}, {"L", 13.1}, {"Y", 2.1}, {"O", 2.6}}},
+      {1.0, {{"S", 4.0}, {"L", 7.8}, {"Y", 2.8}, {"O", 2.4}}},
+  };
+  const auto row = table.find(rate);
+  if (row == table.end()) return std::nullopt;
+  const auto cell = row->second.find(path);
+  if (cell == row->second.end()) return std::nullopt;
+  return cell->second;
+}
+
+std::vector<ArrivalResult> runExperiment(const simulation::World &world,
+                                         const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                                         const ExperimentSettings &settings) {
+  std::vector<Arrival> arrivals;
+  for (const auto &[name, waypoints] : paths)
+    for (double rate : settings.rates)
+      for (int a = 0; a < settings.arrivals; ++a) arrivals.push_back({name, rate, a});
+  const std::size_t per_arrival = settings.methods.size() + 1;
+  std::vector<ArrivalResult> results(arrivals.size() * per_arrival);
+
+  std::atomic<std::size_t> next{0}, done{0};
+  auto worker = [&]() {
+    std::map<std::string, std::unique_ptr<odometry::ScanMatcher>> matchers;
+    for (const std::string &method : settings.methods)
+      matchers[method] = odometry::makeScanMatcher(method, settings.matcher);
+    for (std::size_t j = next++; j < arrivals.size(); j = next++) {
+      const Arrival &arrival = arrivals[j];
+      const unsigned seed = settings.seed + static_cast<unsigned>(arrival.arrival);
+      // The arrival's own line: every waypoint shifted a little, as no robot drives one line twice.
+      std::vector<Eigen::Vector2d> waypoints = paths.at(arrival.path);
+      std::mt19937 jitter(seed * 7919u + 17u);
+      std::normal_distribution<double> shift(0.0, settings.waypoint_jitter > 0.0 ? settings.waypoint_jitter : 1.0);
+      if (settings.waypoint_jitter > 0.0)
+        for (Eigen::Vector2d &w : waypoints) w += Eigen::Vector2d(shift(jitter), shift(jitter));
+      simulation::RunSettings run_settings = settings.run;
+      run_settings.rate = arrival.rate;
+      run_settings.seed = seed;
+      const simulation::SimulatedRun run = simulation::simulateRun(world, waypoints, run_settings);
+
+      odometry::OdometryOptions options;
+      options.guess = settings.guess;
+      for (std::size_t m = 0; m < per_arrival; ++m) {
+        ArrivalResult &result = results[j * per_arrival + m];
+        result.path = arrival.path;
+        result.rate = arrival.rate;
+        result.arrival = arrival.arrival;
+        result.path_length = run.path_length;
+        result.scans = run.log.entries.size();
+        io::Trajectory estimate;
+        if (m < settings.methods.size()) {
+          result.method = settings.methods[m];
+          const odometry::OdometryRun odometry = odometry::runOdometry(run.log, *matchers[result.method], options);
+          estimate = odometry.trajectory;
+          result.registrations = odometry.stats.registrations;
+          result.failures = odometry.stats.failures;
+          result.median_ms = median(odometry.stats.milliseconds);
+        } else {
+          result.method = kWheelOdometry;
+          estimate = wheelOdometry(run.log);
+        }
+        const evaluation::EndPointError error =
+            evaluation::endPointError(evaluation::associate(estimate, run.ground_truth));
+        result.end_point_error = error.error;
+        result.end_point_percent = error.percent;
+        if (arrival.arrival == 0) {
+          result.estimate = std::move(estimate);
+          result.ground_truth = run.ground_truth;
+        }
+      }
+      const std::size_t finished = ++done;
+      if (settings.progress) settings.progress(finished, arrivals.size());
+    }
+  };
+  const unsigned threads = std::max(1u, std::min<unsigned>(settings.jobs ? settings.jobs : std::thread::hardware_concurrency(),
+                                                           static_cast<unsigned>(std::max<std::size_t>(arrivals.size(), 1))));
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (std::thread &t : pool) t.join();
+  return results;
+}
+
+std::vector<CellSummary> summarize(const std::vector<ArrivalResult> &results) {
+  std::vector<CellSummary> cells;
+  std::map<std::tuple<std::string, double, std::string>, std::size_t> index;
+  std::vector<std::vector<double>> percents, milliseconds;
+  for (const ArrivalResult &r : results) {
+    const auto key = std::make_tuple(r.path, r.rate, r.method);
+    auto found = index.find(key);
+    if (found == index.end()) {
+      found = index.emplace(key, cells.size()).first;
+      cells.push_back({r.path, r.method, r.rate});
+      percents.emplace_back();
+      milliseconds.emplace_back();
+    }
+    CellSummary &cell = cells[found->second];
+    ++cell.arrivals;
+    cell.registrations += r.registrations;
+    cell.failures += r.failures;
+    percents[found->second].push_back(r.end_point_percent);
+    milliseconds[found->second].push_back(r.median_ms);
+  }
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    cells[k].median_percent = median(percents[k]);
+    cells[k].worst_percent = *std::max_element(percents[k].begin(), percents[k].end());
+    cells[k].median_ms = median(milliseconds[k]);
+  }
+  return cells;
+}
+
+}  // namespace contour_reg::experiment

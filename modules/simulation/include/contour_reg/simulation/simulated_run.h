@@ -1,0 +1,44 @@
+#pragma once
+/// @file simulated_run.h
+/// A robot driving a path through a world with a LIDAR: the scans it logs, its wheel
+/// odometry and its true poses, ready for the same readers and metrics as a real log.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contour_reg/io/scan_log.h"
+#include "contour_reg/io/trajectory.h"
+#include "contour_reg/simulation/lidar.h"
+#include "contour_reg/simulation/world.h"
+
+namespace contour_reg::simulation {
+
+enum class Motion {
+  kStopAndGo,   ///< the robot stands still while the LIDAR sweeps (the paper's experiment)
+  kContinuous,  ///< the robot keeps moving; each beam is taken from where the robot is when it fires
+};
+
+struct RunSettings {
+  LidarModel lidar = LidarModel::hokuyoUtm30lx();
+  double rate = 2.0;    ///< Hz, LIDAR revolutions per second: one scan per revolution
+  double speed = 0.5;   ///< m/s along the path; the scans lie speed / rate m apart
+  Motion motion = Motion::kStopAndGo;
+  double turn_radius = 0.4;      ///< m, see poseAlongPath
+  double odometry_noise = 0.02;  ///< relative standard deviation of the wheel odometry increments
+  unsigned seed = 1;             ///< fixes range noise, dropout and odometry noise
+};
+
+struct SimulatedRun {
+  io::ScanLog log;              ///< scans stamped k / rate s, wheel odometry at each
+  io::Trajectory ground_truth;  ///< the true sensor pose at each scan stamp
+  double path_length = 0.0;     ///< m
+};
+
+/// Drives `waypoints` through `world`. Scan k is stamped k / rate; in continuous motion its
+/// beams fire over the revolution that starts then, so the later beams see the world from
+/// further along the path.
+SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> &waypoints,
+                         const RunSettings &settings);
+
+}  // namespace contour_reg::simulation
