@@ -115,7 +115,7 @@ void expectNotConverged(const simulation::World &world, const Eigen::Isometry2d 
   const ContourFeatures b = extractContourFeatures(test::scanFrom(world, motion, 0.01, 2), ContourParams{});
   std::mt19937 rng(1);
   const RegistrationResult r = registerContours(b, a, RegistrationParams{}, rng);
-  EXPECT_FALSE(r.converged);
+  EXPECT_FALSE(r.converged) << r.transform;
   EXPECT_EQ(r.status, RegistrationStatus::kTooFewSpecialPoints);
   EXPECT_NE(r.reason.find("special points"), std::string::npos) << r.reason;
   EXPECT_TRUE(r.transform.isIdentity());

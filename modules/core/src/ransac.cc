@@ -64,6 +64,18 @@ bool RansacParams::validate(std::string *why) const {
   return true;
 }
 
+namespace {
+
+constexpr std::size_t kMaxRivals = 4;
+
+// Two motions that place the source within 0.3 m and 10 deg of each other.
+bool sameMotion(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
+  return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() < 0.3 &&
+         angleDifference(yawOf(rigidPart(a)), yawOf(rigidPart(b))) < 10.0 * M_PI / 180.0;
+}
+
+}  // namespace
+
 RansacResult ransac(const Points2D &source, const Points2D &target, const std::vector<double> &pair_rotations,
                     const RansacParams &params, std::mt19937 &rng) {
   RansacResult result;
@@ -94,7 +106,19 @@ RansacResult ransac(const Points2D &source, const Points2D &target, const std::v
     }
     double error = 0.0;
     const std::vector<int> inliers = inliersOf(hypothesis, source, target, params.inlier_threshold, error);  // step 4
+    if (result.found && inliers.size() == best_count && !sameMotion(hypothesis, result.transform)) {
+      const bool known = std::any_of(result.rivals.begin(), result.rivals.end(),
+                                     [&](const Eigen::Matrix3d &r) { return sameMotion(r, hypothesis); });
+      if (!known && result.rivals.size() < kMaxRivals) result.rivals.push_back(hypothesis);
+    }
     if (inliers.size() > best_count || (inliers.size() == best_count && error < best_error)) {  // step 5
+      if (inliers.size() > best_count) result.rivals.clear();
+      else if (result.found && !sameMotion(hypothesis, result.transform)) {
+        result.rivals.erase(std::remove_if(result.rivals.begin(), result.rivals.end(),
+                                           [&](const Eigen::Matrix3d &r) { return sameMotion(r, hypothesis); }),
+                            result.rivals.end());
+        result.rivals.push_back(result.transform);
+      }
       best_count = inliers.size();
       best_error = error;
       result.transform = hypothesis;

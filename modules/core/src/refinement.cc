@@ -100,6 +100,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
   double x = initial(0, 2), y = initial(1, 2), yaw = yawOf(initial);
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   double weighted_squares = 0.0;
+  double lever_squares = 0.0;  // sum of |rotated source point|^2: the rotation information if every normal were tangential
   double distance = params.max_distance;
   for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
     result.iterations = iteration + 1;
@@ -108,6 +109,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
     Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
     weighted_squares = 0.0;
+    lever_squares = 0.0;
     int pairs = 0;
     for (const Eigen::Vector2d &p : samples) {
       const Eigen::Vector2d rotated = rotation * p;
@@ -119,6 +121,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
       const double weight = std::abs(residual) <= params.huber ? 1.0 : params.huber / std::abs(residual);
       const Eigen::Vector3d jacobian(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rotated.y(), rotated.x())));
       h += weight * jacobian * jacobian.transpose();
+      lever_squares += weight * rotated.squaredNorm();
       g += weight * residual * jacobian;
       weighted_squares += weight * residual * residual;
       ++pairs;
@@ -150,7 +153,13 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(information.topLeftCorner<2, 2>());
     result.constraint_ratio = translation.eigenvalues()(1) > 0.0
                                   ? translation.eigenvalues()(0) / translation.eigenvalues()(1) : 0.0;
-    result.degenerate = result.constraint_ratio <= params.degeneracy_ratio;
+    const Eigen::Matrix2d h_tt = information.topLeftCorner<2, 2>();
+    const Eigen::Vector2d h_tr = information.topRightCorner<2, 1>();
+    const double h_rr = information(2, 2);
+    if (lever_squares > 0.0 && std::abs(h_tt.determinant()) > 1e-12)
+      result.rotation_constraint_ratio = std::max(0.0, h_rr - h_tr.dot(h_tt.inverse() * h_tr)) / lever_squares;
+    result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
+                        result.rotation_constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
     if (lu.isInvertible()) result.covariance = sigma2 * lu.inverse();

@@ -63,6 +63,29 @@ const char *toString(RegistrationStatus status) {
 namespace {
 
 // Stages D-F and the refinement, from the corners.
+// RANSAC may end with rival motions as well supported as its best (a symmetric room seen
+// from two corners matched crosswise). Each is refined on the contours; the best overlap
+// wins, and where overlaps tie the motion nearest the guess (no motion without one) wins.
+RefinementResult refineBest(const ContourFeatures &source, const ContourFeatures &target, const Eigen::Matrix3d &coarse,
+                            const std::vector<Eigen::Matrix3d> &rivals, const RegistrationParams &params,
+                            const Eigen::Matrix3d *guess) {
+  RefinementResult best = refineOnContours(source, target, coarse, params.refinement);
+  if (rivals.empty()) return best;
+  const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
+  auto distance = [&prior](const Eigen::Matrix3d &t) {  // m, with 1 m per rad of turn
+    return (t.topRightCorner<2, 1>() - prior.topRightCorner<2, 1>()).norm() +
+           std::abs(std::remainder(yawOf(t) - yawOf(prior), 2.0 * M_PI));
+  };
+  constexpr double kOverlapTie = 0.05;
+  for (const Eigen::Matrix3d &rival : rivals) {
+    const RefinementResult refined = refineOnContours(source, target, rigidPart(rival), params.refinement);
+    const bool better = refined.overlap > best.overlap + kOverlapTie ||
+                        (refined.overlap > best.overlap - kOverlapTie && distance(refined.transform) < distance(best.transform));
+    if (better) best = refined;
+  }
+  return best;
+}
+
 RegistrationResult registerByCorners(const ContourFeatures &source, const ContourFeatures &target,
                                      const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess) {
   RegistrationResult result;
@@ -142,7 +165,7 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
   }
   result.transform = params.ransac.model == TransformModel::kRigid ? coarse : found.transform;
   if (params.refinement.enabled) {
-    const RefinementResult refined = refineOnContours(source, target, coarse, params.refinement);
+    const RefinementResult refined = refineBest(source, target, coarse, found.rivals, params, guess);
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
     result.covariance = refined.covariance;
@@ -166,9 +189,10 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
                       const Eigen::Matrix3d *guess, RegistrationResult &result) {
   const Eigen::Matrix3d start = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
   const RefinementResult refined = refineOnContours(source, target, start, params.refinement);
-  const bool weak = refined.degenerate || refined.constraint_ratio < params.local_fallback_min_constraint;
+  const bool weak = refined.degenerate || refined.constraint_ratio < params.local_fallback_min_constraint ||
+                    refined.rotation_constraint_ratio < params.local_fallback_min_constraint;
   if (refined.overlap < params.local_fallback_min_overlap || weak) {
-    result.reason += weak ? "; refining the guess on the contours leaves a direction weakly constrained (corridor)"
+    result.reason += weak ? "; refining the guess on the contours leaves a direction weakly constrained (corridor, circle)"
                                         : "; refining the guess on the contours pairs only " +
                                               std::to_string(static_cast<int>(100 * refined.overlap)) + " %";
     return;

@@ -45,6 +45,9 @@ struct RansacResult {
   std::vector<int> inliers;  ///< indices of the inlier pairs
   double rmse = 0.0;         ///< m, of the inliers under `transform`
   int iterations = 0;
+  /// Other hypotheses with as many inliers as the best that place the source elsewhere
+  /// (a symmetric scene: two corners matched crosswise). The caller decides between them.
+  std::vector<Eigen::Matrix3d> rivals;
 };
 
 /// Runs RANSAC on pairs (source[i], target[i]). `pair_rotations` may be empty.

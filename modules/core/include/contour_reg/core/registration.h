@@ -39,11 +39,12 @@ struct RegistrationParams {
   /// When the corners cannot decide (too few special points, pairs or inliers), refine
   /// the guess (identity without one) on the contours and accept the result when at
   /// least this fraction of the source contour then lies on the target contour and every
-  /// direction is well constrained (local_fallback_min_constraint). <= 0 (the default)
-  /// disables it: such pairs then fail. 0.75 recovers about 2 % more pairs on real logs.
-  double local_fallback_min_overlap = 0.0;
-  /// The local fallback also needs the contours to constrain every direction of
-  /// translation: weakest / strongest eigenvalue of their information at least this.
+  /// direction is well constrained (local_fallback_min_constraint). <= 0 disables it:
+  /// such pairs then fail. The result says when it came from here (from_local_fallback).
+  double local_fallback_min_overlap = 0.75;
+  /// The local fallback also needs the contours to constrain every direction: the
+  /// translation's weakest / strongest eigenvalue ratio and the rotation's share left once
+  /// translation is solved (RefinementResult) both at least this.
   double local_fallback_min_constraint = 0.1;
 
   bool validate(std::string *why = nullptr) const;
