@@ -86,6 +86,7 @@ bool RefinementParams::validate(std::string *why) const {
   if (!(min_distance > 0.0 && max_distance >= min_distance)) return invalid(why, "refinement distances must be 0 < min <= max");
   if (!(sample_step > 0.0)) return invalid(why, "refinement.sample_step must be > 0");
   if (!(huber > 0.0)) return invalid(why, "refinement.huber must be > 0");
+  if (!(covariance_scale > 0.0)) return invalid(why, "refinement.covariance_scale must be > 0");
   return true;
 }
 
@@ -162,7 +163,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
-    if (lu.isInvertible()) result.covariance = sigma2 * lu.inverse();
+    if (lu.isInvertible()) result.covariance = params.covariance_scale * sigma2 * lu.inverse();
   } else {
     result.degenerate = true;
   }
