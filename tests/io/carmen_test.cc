@@ -89,6 +89,19 @@ TEST(Carmen, NanAndInfRangesBecomeInvalidBeams) {
   EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[2]) && std::isnan(r[3]));
 }
 
+// Found by tests/fuzz: a NaN remission count was cast to an integer.
+TEST(Carmen, NonNumericCountsInRobotLaserLinesAreSkipped) {
+  TempDir dir;
+  const std::string robotlaser = "ROBOTLASER1 0 -1.5 3.0 1.0 30 0.01 0 4 1 2 3 4 ";
+  const std::string tail = " 0 0 0 0 0 0 0 0 0 0 0 1.0 host 1.0\n";
+  const auto path = dir.write("r.clf", robotlaser + "0" + tail + robotlaser + "nan" + tail + robotlaser + "inf" + tail);
+  const ScanLog log = readCarmen(path);
+  EXPECT_EQ(log.entries.size(), 1u);
+  EXPECT_EQ(log.report.skipped, 2u);
+  ASSERT_FALSE(log.report.problems.empty());
+  EXPECT_NE(log.report.problems[0].find(path + ":2:"), std::string::npos) << log.report.problems[0];
+}
+
 TEST(Carmen, FilesWithoutAUsableScanAreErrorsNamingTheFile) {
   TempDir dir;
   for (const std::string &text : {std::string(), std::string("ODOM 0 0 0 0 0 0 1 h 1\n"),

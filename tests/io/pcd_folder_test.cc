@@ -66,6 +66,24 @@ TEST(PcdFolder, UnreadableFilesAreReportedAndSkipped) {
   EXPECT_EQ(log.report.skipped, 1u);
 }
 
+// Found by tests/fuzz: field sizes that disagree with their types (and a zero count) made
+// PCL's point conversion read past its buffer. Such files are skipped and named.
+TEST(PcdFolder, HeadersWithInconsistentFieldsAreSkipped) {
+  test::TempDir dir;
+  savePcd(dir.file("1.pcd"), sampleScan(0.0), false);
+  dir.write("2.pcd",
+            "# .PCD v0.7\nFIELDS x y z\nSIZE 8 4 4\nTYPE F F F\nCOUNT 0 0 1\nWIDTH 4\nHEIGHT 1\n"
+            "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n1 0 0\n0 1 0\n0.5 0.5 0\nnan nan nan\n");
+  dir.write("3.pcd",
+            "# .PCD v0.7\nFIELDS x y z\nSIZE 8 8 8\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\n"
+            "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n1 0 0\n0 1 0\n");
+  const ScanLog log = readPcdFolder(dir.path().string());
+  EXPECT_EQ(log.entries.size(), 1u);
+  EXPECT_EQ(log.report.skipped, 2u);
+  ASSERT_FALSE(log.report.problems.empty());
+  EXPECT_NE(log.report.problems.front().find("2.pcd"), std::string::npos);
+}
+
 TEST(PcdFolder, AFolderWithoutScansIsAnError) {
   test::TempDir dir;
   EXPECT_THROW(readPcdFolder(dir.path().string()), ReadError);

@@ -83,7 +83,7 @@ std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &e
     if (n < 2) return "fewer than 2 beams";
     if (!numbers(f, 9, n, values)) return "truncated or non-numeric ranges";
     double remissions_value = 0.0;
-    if (!number(f, 9 + n, remissions_value) || remissions_value < 0.0 ||
+    if (!number(f, 9 + n, remissions_value) || !std::isfinite(remissions_value) || remissions_value < 0.0 ||
         remissions_value > static_cast<double>(options.max_beams))
       return "bad remission count";
     std::size_t next = 10 + n + static_cast<std::size_t>(remissions_value);

@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <limits>
 
+#include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
 
 #include "log_assembly.h"
+#include "pcd_header_check.h"
 #include "text_lines.h"
 
 namespace contour_reg::io {
@@ -67,6 +69,20 @@ bool binByBearing(std::vector<Beam> beams, LaserScan &scan) {
   return exact;
 }
 
+// A header the point conversion can trust: x and y as single floats, every field inside
+// the point, no field of zero count (PCL's conversion overruns its buffers otherwise).
+bool plainXYHeader(const pcl::PCLPointCloud2 &header) {
+  bool x = false, y = false;
+  for (const pcl::PCLPointField &field : header.fields) {
+    const int size = pcl::getFieldSize(field.datatype);
+    if (size <= 0 || field.count < 1) return false;
+    if (std::size_t(field.offset) + std::size_t(size) * field.count > header.point_step) return false;
+    if (field.name == "x") x = field.datatype == pcl::PCLPointField::FLOAT32 && field.count == 1;
+    if (field.name == "y") y = field.datatype == pcl::PCLPointField::FLOAT32 && field.count == 1;
+  }
+  return x && y;
+}
+
 }  // namespace
 
 ScanLog readPcdFolder(const std::string &folder, double max_range) {
@@ -83,7 +99,12 @@ ScanLog readPcdFolder(const std::string &folder, double max_range) {
     const std::string file = files[k].string();
     ++log.report.lines;
     pcl::PointCloud<pcl::PointXYZ> cloud;
-    // The header first: PCL's reader is not safe on files that announce no points.
+    // Our own check of the header first: PCL's reader trusts it and is not safe on bad ones.
+    std::size_t bad_line = 0;
+    if (const std::string problem = detail::checkPcdHeader(file, bad_line); !problem.empty()) {
+      log.report.add(file, bad_line, problem);
+      continue;
+    }
     bool read = false;
     try {
       pcl::PCLPointCloud2 header;
@@ -91,8 +112,12 @@ ScanLog readPcdFolder(const std::string &folder, double max_range) {
       Eigen::Quaternionf orientation;
       int version = 0, data_type = 0;
       unsigned int data_index = 0;
+      // Read untyped, check the very fields the conversion will use, then convert.
+      pcl::PCLPointCloud2 blob;
       read = reader.readHeader(file, header, origin, orientation, version, data_type, data_index) == 0 &&
-             std::size_t(header.width) * header.height > 0 && reader.read(file, cloud) == 0;
+             std::size_t(header.width) * header.height > 0 && reader.read(file, blob) == 0 && plainXYHeader(blob) &&
+             blob.data.size() >= std::size_t(blob.point_step) * blob.width * blob.height;
+      if (read) pcl::fromPCLPointCloud2(blob, cloud);
     } catch (const std::exception &) {
       read = false;
     }

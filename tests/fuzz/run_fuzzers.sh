@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan) into build-fuzz/ and runs each for
+# SECONDS (default 60) from its seed corpus in tests/fuzz/corpus/. Findings are written to
+# build-fuzz/findings/; the script fails when a target crashes, leaks or hangs.
+#
+#   tests/fuzz/run_fuzzers.sh [SECONDS]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+seconds="${1:-60}"
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONTOUR_REG_BUILD_FUZZERS=ON \
+  -DBUILD_TESTING=OFF -DCONTOUR_REG_BUILD_APPS=OFF -DCONTOUR_REG_WITH_ROSBAG=OFF >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target carmen_fuzzer pcd_folder_fuzzer pipeline_fuzzer
+mkdir -p build-fuzz/findings
+status=0
+for target in carmen pcd_folder pipeline; do
+  corpus="build-fuzz/corpus/${target}"
+  mkdir -p "$corpus"
+  seeds="tests/fuzz/corpus/${target%_folder}"
+  echo "fuzz: ${target} for ${seconds} s"
+  if ! "build-fuzz/bin/${target}_fuzzer" "$corpus" "$seeds" -max_total_time="$seconds" -timeout=10 \
+      -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="build-fuzz/findings/${target}-" -print_final_stats=1 \
+      2> "build-fuzz/findings/${target}.log"; then
+    echo "fuzz: ${target} FOUND A PROBLEM, see build-fuzz/findings/${target}.log"
+    tail -40 "build-fuzz/findings/${target}.log"
+    status=1
+  else
+    grep -E "stat::number_of_executed_units|cov:" "build-fuzz/findings/${target}.log" | tail -2
+  fi
+done
+exit "$status"
