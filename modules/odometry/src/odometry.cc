@@ -47,7 +47,21 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     if (options.guess == GuessSource::kConstantVelocity) expected = by_velocity;
 
     const io::Pose2D guess = between(poses[reference], expected);
-    const MatchResult match = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess));
+    MatchResult match = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess));
+    // A failure gets a second try from the constant-velocity prediction when that is a
+    // different guess (a turn or a drive that goes on, where the first guess was "no motion").
+    const io::Pose2D velocity_guess = between(poses[reference], by_velocity);
+    const io::Pose2D guess_gap = between(guess, velocity_guess);
+    if (!match.converged && options.retry_with_velocity && velocity_scale > 0.0 &&
+        (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05)) {
+      const MatchResult retry = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(velocity_guess));
+      const double first_ms = match.milliseconds;
+      if (retry.converged) {
+        match = retry;
+        ++run.stats.recovered_by_retry;
+      }
+      match.milliseconds = first_ms + retry.milliseconds;
+    }
     ++run.stats.registrations;
     if (options.on_match) options.on_match(reference, k, match);
     run.stats.milliseconds.push_back(match.milliseconds);

@@ -48,10 +48,10 @@ World makeOfficeWorld() {
   world.addBox(V(9.0, 6.0), V(9.4, 6.4));
   world.addBox(V(20.5, 8.6), V(20.9, 9.0));
   world.addCircle(V(16.5, 6.45), 0.25);
-  world.addCircle(V(4.0, 4.5), 0.3);
+  world.addCircle(V(4.6, 4.6), 0.3);
   world.addCircle(V(20.0, 2.0), 0.4);
   world.addCircle(V(27.0, 14.0), 0.35);
-  world.addCircle(V(6.0, 10.5), 0.2);
+  world.addCircle(V(6.8, 10.6), 0.2);
   return world;
 }
 

@@ -59,7 +59,7 @@ const std::vector<std::string> &pathShapes() {
 }
 
 std::vector<V> officePath(const std::string &shape) {
-  if (shape == "L") return {V(2.0, 7.5), V(22.5, 7.5), V(22.5, 12.5)};
+  if (shape == "L") return {V(2.0, 7.5), V(22.5, 7.5), V(22.5, 11.4)};
   if (shape == "S") return {V(2.0, 11.5), V(5.5, 11.5), V(5.5, 7.5), V(11.5, 7.5), V(11.5, 3.8), V(15.5, 3.8)};
   if (shape == "Y") return {V(3.5, 2.5), V(3.5, 7.5), V(13.0, 7.5), V(14.5, 8.3), V(14.5, 12.5)};
   if (shape == "O")

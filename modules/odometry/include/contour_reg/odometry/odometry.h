@@ -28,6 +28,9 @@ struct OdometryOptions {
   bool keyframes = false;
   double keyframe_distance = 0.3;  ///< m of motion from the keyframe that starts a new one
   double keyframe_angle = 0.2;     ///< rad of turn from the keyframe that starts a new one
+  /// A registration that fails from the guess is tried once more from the constant-velocity
+  /// prediction (when that differs); only if both fail does the scan count as failed.
+  bool retry_with_velocity = true;
   /// Called after every scan with (scans done, scans in all).
   std::function<void(std::size_t, std::size_t)> progress;
   /// Called after every registration with (reference scan index, scan index, result).
@@ -38,6 +41,7 @@ struct OdometryStats {
   std::size_t registrations = 0;
   std::size_t failures = 0;      ///< not converged (degenerate ones included)
   std::size_t degenerate = 0;    ///< of the failures, those the method flagged degenerate
+  std::size_t recovered_by_retry = 0;  ///< registrations that failed from the guess and converged on the retry
   std::vector<double> milliseconds;                  ///< per registration
   std::map<std::string, std::size_t> failure_reasons;  ///< MatchResult::status -> count
   std::vector<std::size_t> failed_scans;             ///< scan indices whose registration failed
@@ -48,7 +52,8 @@ struct OdometryRun {
   OdometryStats stats;
 };
 
-/// Runs odometry over `log` with `matcher`. A failed registration is never chained: the
+/// Runs odometry over `log` with `matcher`. A registration that fails is retried from the
+/// constant-velocity prediction (retry_with_velocity); one that fails again is never chained: the
 /// scan's pose comes from the wheel odometry when the log has it and the guess source is
 /// kOdometry, otherwise from the previous motion (constant velocity); it is counted in
 /// the stats.

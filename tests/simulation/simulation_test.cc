@@ -1,0 +1,221 @@
+// The simulator: exact ray casting, the noise model, paths and their placement, runs that a
+// seed fixes and that round-trip through the CARMEN reader, occupancy maps.
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "contour_reg/io/carmen.h"
+#include "contour_reg/simulation/lidar.h"
+#include "contour_reg/simulation/occupancy_grid.h"
+#include "contour_reg/simulation/office.h"
+#include "contour_reg/simulation/paths.h"
+#include "contour_reg/simulation/simulated_run.h"
+#include "temp_dir.h"
+
+namespace contour_reg::simulation {
+namespace {
+
+using V = Eigen::Vector2d;
+
+TEST(RayCasting, ABoxGivesExactRanges) {
+  World box;
+  box.addBox({-2.0, -1.0}, {3.0, 4.0});
+  EXPECT_DOUBLE_EQ(box.castRay({0, 0}, {1, 0}), 3.0);
+  EXPECT_DOUBLE_EQ(box.castRay({0, 0}, {-1, 0}), 2.0);
+  EXPECT_DOUBLE_EQ(box.castRay({0, 0}, {0, 1}), 4.0);
+  EXPECT_NEAR(box.castRay({0, 0}, V(1, 1).normalized()), 3.0 * std::sqrt(2.0), 1e-12);
+  World circle;
+  circle.addCircle({5.0, 0.0}, 1.0);
+  EXPECT_NEAR(circle.castRay({0, 0}, {1, 0}), 4.0, 1e-12);
+  EXPECT_TRUE(std::isinf(circle.castRay({0, 0}, {-1, 0})));
+}
+
+TEST(RayCasting, ScanOfABoxMatchesGeometry) {
+  World box;
+  box.addBox({-2.0, -2.0}, {2.0, 2.0});
+  LidarModel model = LidarModel::hokuyoUtm30lx();
+  model.range_noise = 0.0;
+  std::mt19937 rng(1);
+  const LaserScan scan = simulateScan(box, Eigen::Isometry2d::Identity(), model, rng);
+  ASSERT_EQ(scan.ranges.size(), 1081u);
+  for (std::size_t n = 0; n < scan.ranges.size(); ++n) {
+    const double a = scan.bearing(n);
+    const double expected = 2.0 / std::max(std::abs(std::cos(a)), std::abs(std::sin(a)));
+    ASSERT_NEAR(scan.ranges[n], expected, 1e-5) << "beam " << n;
+  }
+}
+
+TEST(OccupancyGrid, RaysStopAtTheFirstOccupiedCellBoundary) {
+  // 20 x 10 cells of 0.1 m, origin (-1, -0.5); a wall of occupied cells in column 15.
+  std::vector<OccupancyGrid::Cell> cells(200, OccupancyGrid::Cell::kFree);
+  for (int row = 0; row < 10; ++row) cells[static_cast<std::size_t>(row * 20 + 15)] = OccupancyGrid::Cell::kOccupied;
+  const OccupancyGrid grid(20, 10, 0.1, {-1.0, -0.5}, cells);
+  // The wall's near face is at x = -1 + 1.5 = 0.5.
+  EXPECT_NEAR(grid.castRay({0.0, 0.0}, {1, 0}), 0.5, 1e-9);
+  EXPECT_NEAR(grid.castRay({0.0, 0.0}, V(1, 0.2).normalized()), 0.5 * V(1, 0.2).norm(), 1e-9);
+  EXPECT_TRUE(std::isinf(grid.castRay({0.0, 0.0}, {-1, 0})));  // leaves the grid
+  EXPECT_NEAR(grid.clearance({0.0, 0.0}), 0.5, 0.15);
+  EXPECT_TRUE(grid.isFree({0.0, 0.0}));
+  EXPECT_FALSE(grid.isFree({0.55, 0.0}));
+}
+
+TEST(OccupancyGrid, MapServerYamlAndPgmAreRead) {
+  test::TempDir dir;
+  {  // 4 x 3 PGM: top row black (occupied), the rest white; one grey (unknown) pixel
+    std::ofstream pgm(dir.file("map.pgm"), std::ios::binary);
+    pgm << "P5\n4 3\n255\n";
+    const unsigned char pixels[12] = {0, 0, 0, 0, 255, 205, 255, 255, 255, 255, 255, 255};
+    pgm.write(reinterpret_cast<const char *>(pixels), 12);
+  }
+  dir.write("map.yaml", "image: map.pgm\nresolution: 0.5\norigin: [-1.0, 2.0, 0.0]\nnegate: 0\n"
+                        "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const OccupancyGrid grid = readOccupancyGrid(dir.file("map.yaml"));
+  EXPECT_EQ(grid.width(), 4);
+  EXPECT_EQ(grid.height(), 3);
+  EXPECT_DOUBLE_EQ(grid.resolution(), 0.5);
+  EXPECT_EQ(grid.cell(0, 2), OccupancyGrid::Cell::kOccupied);  // the image's top row is the grid's last
+  EXPECT_EQ(grid.cell(1, 1), OccupancyGrid::Cell::kUnknown);
+  EXPECT_EQ(grid.cell(0, 0), OccupancyGrid::Cell::kFree);
+  EXPECT_NEAR(grid.castRay({-0.75, 2.25}, {0, 1}), 0.75, 1e-9);  // from y 2.25 to the top row, which starts at 3.0
+  const OccupancyGrid same = readOccupancyGrid(dir.file("map.pgm"), {0.5, V(-1.0, 2.0)});
+  EXPECT_EQ(same.cell(0, 2), OccupancyGrid::Cell::kOccupied);
+
+  dir.write("bad.yaml", "image: map.pgm\nresolution: [oops\n");
+  try {
+    readOccupancyGrid(dir.file("bad.yaml"));
+    FAIL() << "a broken YAML file must be refused";
+  } catch (const io::ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find("bad.yaml:"), std::string::npos) << error.what();
+  }
+  dir.write("noimage.yaml", "resolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_THROW(readOccupancyGrid(dir.file("noimage.yaml")), io::ReadError);
+  EXPECT_THROW(readOccupancyGrid(dir.file("missing.pgm")), io::ReadError);
+}
+
+TEST(Lidar, NoiseAndDropoutFollowTheModel) {
+  World wall;
+  wall.addSegment({5.0, -100.0}, {5.0, 100.0});
+  LidarModel model;
+  model.beams = 20001;
+  model.field_of_view = 0.02;  // all beams almost straight at the wall, 5 m away
+  model.range_noise = 0.02;
+  model.dropout = 0.1;
+  std::mt19937 rng(7);
+  const LaserScan scan = simulateScan(wall, Eigen::Isometry2d::Identity(), model, rng);
+  std::vector<double> errors;
+  for (std::size_t n = 0; n < scan.ranges.size(); ++n)
+    if (std::isfinite(scan.ranges[n])) errors.push_back(scan.ranges[n] - 5.0 / std::cos(scan.bearing(n)));
+  const double dropped = 1.0 - static_cast<double>(errors.size()) / static_cast<double>(scan.ranges.size());
+  EXPECT_NEAR(dropped, 0.1, 0.01);
+  const double mean = std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
+  double variance = 0.0;
+  for (double e : errors) variance += (e - mean) * (e - mean);
+  variance /= static_cast<double>(errors.size() - 1);
+  EXPECT_NEAR(mean, 0.0, 0.001);
+  EXPECT_NEAR(std::sqrt(variance), 0.02, 0.001);
+}
+
+TEST(Paths, ShapesHaveTheirTurnsAndLengths) {
+  EXPECT_NEAR(pathLength(officePath("L")), 24.4, 1e-9);
+  EXPECT_EQ(officePath("L").size(), 3u);  // one turn
+  EXPECT_EQ(officePath("S").size(), 6u);  // four turns, alternating
+  const auto o = officePath("O");
+  EXPECT_NEAR((o.front() - o.back()).norm(), 0.0, 1e-9);  // a closed loop
+  EXPECT_TRUE(officePath("Q").empty());
+  const auto poses = samplePath(officePath("L"), 0.5);
+  EXPECT_EQ(poses.size(), 50u);  // 24.4 m every 0.5 m, and the end
+  EXPECT_NEAR(poses.back().translation().x(), 22.5, 1e-9);
+  EXPECT_NEAR(poses.back().translation().y(), 11.4, 1e-9);
+  EXPECT_NEAR(std::atan2(poses.front().linear()(1, 0), poses.front().linear()(0, 0)), 0.0, 1e-9);
+  EXPECT_NEAR(std::atan2(poses.back().linear()(1, 0), poses.back().linear()(0, 0)), M_PI / 2, 1e-9);
+}
+
+TEST(Paths, OfficePathsKeepClearOfObstacles) {
+  const World office = makeOfficeWorld();
+  for (const std::string &name : {"S", "L", "Y", "O", "line"}) {
+    const auto waypoints = officePath(name);
+    for (const auto &pose : samplePath(waypoints, 0.05))
+      ASSERT_GE(office.clearance(pose.translation()), 0.45) << name << " at " << pose.translation().transpose();
+  }
+}
+
+TEST(Paths, PlacementFindsRoomInAMapAndKeepsClearance) {
+  // A 30 m x 20 m hall as an occupancy grid (walls one cell thick).
+  const int width = 300, height = 200;
+  std::vector<OccupancyGrid::Cell> cells(static_cast<std::size_t>(width * height), OccupancyGrid::Cell::kFree);
+  for (int col = 0; col < width; ++col)
+    for (int row : {0, height - 1}) cells[static_cast<std::size_t>(row * width + col)] = OccupancyGrid::Cell::kOccupied;
+  for (int row = 0; row < height; ++row)
+    for (int col : {0, width - 1}) cells[static_cast<std::size_t>(row * width + col)] = OccupancyGrid::Cell::kOccupied;
+  World hall;
+  hall.setGrid(std::make_shared<OccupancyGrid>(width, height, 0.1, V(0, 0), cells));
+  for (const std::string &shape : pathShapes()) {
+    const auto placed = placePath(hall, pathShape(shape));
+    ASSERT_FALSE(placed.empty()) << shape;
+    EXPECT_NEAR(pathLength(placed), pathLength(pathShape(shape)), 1e-9) << shape;  // full size fits
+    for (const auto &pose : samplePath(placed, 0.1)) EXPECT_GE(hall.clearance(pose.translation()), 0.6 - 0.15);
+  }
+  World closet;
+  closet.addBox({0, 0}, {2, 2});
+  EXPECT_TRUE(placePath(closet, pathShape("L")).empty());
+}
+
+TEST(SimulatedRun, ASeedFixesTheRunAndItRoundTripsThroughCarmen) {
+  const World office = makeOfficeWorld();
+  RunSettings settings;
+  settings.rate = 2.0;
+  settings.seed = 5;
+  const auto path = officePath("L");
+  const SimulatedRun a = simulateRun(office, path, settings);
+  const SimulatedRun b = simulateRun(office, path, settings);
+  ASSERT_EQ(a.log.entries.size(), 99u);  // 24.4 m at 0.25 m spacing, and the end
+  ASSERT_EQ(a.ground_truth.size(), a.log.entries.size());
+  for (std::size_t k = 0; k < a.log.entries.size(); ++k) {
+    ASSERT_EQ(a.log.entries[k].scan.ranges.size(), b.log.entries[k].scan.ranges.size());
+    for (std::size_t n = 0; n < a.log.entries[k].scan.ranges.size(); ++n) {
+      const float x = a.log.entries[k].scan.ranges[n], y = b.log.entries[k].scan.ranges[n];
+      ASSERT_TRUE((std::isnan(x) && std::isnan(y)) || x == y);
+    }
+  }
+  settings.seed = 6;
+  const SimulatedRun c = simulateRun(office, path, settings);
+  EXPECT_NE(a.log.entries[3].scan.ranges[500], c.log.entries[3].scan.ranges[500]);
+
+  test::TempDir dir;
+  io::writeCarmen(dir.file("run.clf"), a.log);
+  const io::ScanLog read = io::readCarmen(dir.file("run.clf"));
+  ASSERT_EQ(read.entries.size(), a.log.entries.size());
+  const LaserScan &original = a.log.entries[10].scan, &back = read.entries[10].scan;
+  EXPECT_NEAR(back.angle_min, original.angle_min, 1e-6);
+  EXPECT_NEAR(back.angle_increment, original.angle_increment, 1e-6);
+  EXPECT_NEAR(back.stamp, original.stamp, 1e-6);
+  for (std::size_t n = 0; n < original.ranges.size(); n += 37)
+    if (std::isfinite(original.ranges[n])) EXPECT_NEAR(back.ranges[n], original.ranges[n], 1e-3);
+  ASSERT_TRUE(read.entries[10].odometry.has_value());
+  EXPECT_NEAR(read.entries[10].odometry->x, a.log.entries[10].odometry->x, 1e-4);
+}
+
+TEST(SimulatedRun, ContinuousMotionDistortsTheScan) {
+  World box;
+  box.addBox({-10.0, -10.0}, {10.0, 10.0});
+  RunSettings settings;
+  settings.rate = 1.0;
+  settings.speed = 1.0;
+  settings.lidar.range_noise = 0.0;
+  const std::vector<V> line = {V(-5, 0), V(5, 0)};
+  settings.motion = Motion::kStopAndGo;
+  const SimulatedRun still = simulateRun(box, line, settings);
+  settings.motion = Motion::kContinuous;
+  const SimulatedRun moving = simulateRun(box, line, settings);
+  ASSERT_EQ(still.log.entries.size(), moving.log.entries.size());
+  const auto &a = still.log.entries[2].scan.ranges, &b = moving.log.entries[2].scan.ranges;
+  // The first beam fires where the robot stands; the last about 0.75 m (a 270 deg sweep in 1 s) further on.
+  EXPECT_NEAR(a.front(), b.front(), 1e-4);
+  EXPECT_GT(std::abs(a.back() - b.back()), 0.3);
+}
+
+}  // namespace
+}  // namespace contour_reg::simulation
