@@ -101,6 +101,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
   double x = initial(0, 2), y = initial(1, 2), yaw = yawOf(initial);
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   double weighted_squares = 0.0;
+  double weight_sum = 0.0;
   double lever_squares = 0.0;  // sum of |rotated source point|^2: the rotation information if every normal were tangential
   double distance = params.max_distance;
   for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
@@ -111,6 +112,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
     weighted_squares = 0.0;
     lever_squares = 0.0;
+    weight_sum = 0.0;
     int pairs = 0;
     for (const Eigen::Vector2d &p : samples) {
       const Eigen::Vector2d rotated = rotation * p;
@@ -123,6 +125,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
       const Eigen::Vector3d jacobian(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rotated.y(), rotated.x())));
       h += weight * jacobian * jacobian.transpose();
       lever_squares += weight * rotated.squaredNorm();
+      weight_sum += weight;
       g += weight * residual * jacobian;
       weighted_squares += weight * residual * residual;
       ++pairs;
@@ -132,15 +135,21 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
     result.rmse = pairs > 0 ? std::sqrt(weighted_squares / pairs) : 0.0;
     information = h;
     if (pairs < 6) break;
-    // Solve only along well-constrained directions (eigen-decomposition of the scaled H).
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(h);
+    // Solve only along well-constrained directions. Rotation is measured in metres of arc at
+    // the RMS range first, so that eigenvalues of translation and rotation compare.
+    const double lever = std::sqrt(lever_squares / std::max(weight_sum, 1e-12));
+    const Eigen::Vector3d unit(1.0, 1.0, lever > 1e-6 ? 1.0 / lever : 1.0);
+    const Eigen::Matrix3d scaled_h = unit.asDiagonal() * h * unit.asDiagonal();
+    const Eigen::Vector3d scaled_g = unit.asDiagonal() * g;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scaled_h);
     const Eigen::Vector3d values = eigen.eigenvalues();
     Eigen::Vector3d step = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) {
       if (values(k) <= params.degeneracy_ratio * values(2)) continue;
       const Eigen::Vector3d v = eigen.eigenvectors().col(k);
-      step -= v * (v.dot(g) / values(k));
+      step -= v * (v.dot(scaled_g) / values(k));
     }
+    step = unit.asDiagonal() * step;
     x += step(0);
     y += step(1);
     yaw += step(2);

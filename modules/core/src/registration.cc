@@ -184,11 +184,28 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
   return result;
 }
 
-// Few corners: the guess refined on the contours, kept when well supported.
+// Few corners: the guess, or a motion one pair of corners implies, refined on the contours
+// and kept when well supported.
+constexpr std::size_t kMaxPairHypotheses = 8;
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                       const Eigen::Matrix3d *guess, RegistrationResult &result) {
   const Eigen::Matrix3d start = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
-  const RefinementResult refined = refineOnContours(source, target, start, params.refinement);
+  // Besides the guess, each candidate pair of corners is a full hypothesis on its own: the
+  // rotation arg (N, G) of eq. (14) and the translation that brings the two corners together.
+  std::vector<Eigen::Matrix3d> hypotheses;
+  if (params.correspondence.distance == FragmentDistance::kModulus) {
+    const std::vector<Correspondence> pairs =
+        result.candidates.empty() ? findCorrespondences(source.special_points, target.special_points, params.correspondence)
+                                  : result.candidates;
+    for (const Correspondence &c : pairs) {
+      if (hypotheses.size() >= kMaxPairHypotheses) break;
+      const Eigen::Matrix3d turn = rigidTransform(0.0, 0.0, c.rotation);
+      const Eigen::Vector2d moved = target.special_points[c.target].position -
+                                    turn.topLeftCorner<2, 2>() * source.special_points[c.source].position;
+      hypotheses.push_back(rigidTransform(moved.x(), moved.y(), c.rotation));
+    }
+  }
+  const RefinementResult refined = refineBest(source, target, start, hypotheses, params, guess);
   const bool weak = refined.degenerate || refined.constraint_ratio < params.local_fallback_min_constraint ||
                     refined.rotation_constraint_ratio < params.local_fallback_min_constraint;
   if (refined.overlap < params.local_fallback_min_overlap || weak) {

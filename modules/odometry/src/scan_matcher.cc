@@ -45,6 +45,7 @@ Registration::Ptr makeNdt2d(const MatcherSettings &settings) {
   ndt->setGridStep(Eigen::Vector2f(float(settings.ndt_resolution), float(settings.ndt_resolution)));
   ndt->setMaximumIterations(settings.icp_iterations);
   ndt->setTransformationEpsilon(1e-6);
+  ndt->setOptimizationStepSize(Eigen::Vector3d(0.4, 0.4, 0.1));
   return ndt;
 }
 
