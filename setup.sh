@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Sets up contour_reg on Debian 12 and runs it.
 #
-#   ./setup.sh build   install missing Debian packages, configure and build Release into build/
-#   ./setup.sh run     build, then run the main job on the bundled data
-#   ./setup.sh test    build, then run every test with ctest
+#   ./setup.sh build       install missing Debian packages, configure and build Release into build/
+#   ./setup.sh run         build, then run the main jobs on the bundled data: the method comparison on
+#                          the bundled log and the paper's experiment on the built-in office map
+#   ./setup.sh test        build, then run every test with ctest
+#   ./setup.sh sanitize    build with AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/, run the tests
+#   ./setup.sh fuzz [S]    build the libFuzzer targets with clang into build-fuzz/, run each for S seconds (60)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -11,9 +14,11 @@ PACKAGES=(cmake g++ make pkg-config libeigen3-dev libpcl-dev libflann-dev libope
           libcli11-dev zlib1g-dev libyaml-cpp-dev libgtest-dev libbenchmark-dev
           librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev)
 
+FUZZ_PACKAGES=(clang libclang-rt-14-dev)
+
 install_packages() {
   local missing=()
-  for package in "${PACKAGES[@]}"; do
+  for package in "$@"; do
     dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")
   done
   [ ${#missing[@]} -eq 0 ] && return
@@ -25,7 +30,7 @@ install_packages() {
 }
 
 build() {
-  install_packages
+  install_packages "${PACKAGES[@]}"
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCONTOUR_REG_BUILD_BENCHMARKS=ON
   cmake --build build -j"$(nproc)"
 }
@@ -38,10 +43,25 @@ case "${1:-build}" in
     # table, CSV, trajectories and their picture in build/results/office.
     ./build/bin/contour_reg compare data/office/L-hokuyo-2hz.clf --methods contour contour+icp icp ndt2d \
         --out build/results/office
+    # The paper's experiment (its Table 1) on the built-in office: paths S, L, Y, O x 5, 2, 1 Hz x
+    # 10 arrivals; contour, ICP and NDT2D on the same scans. Table, CSV and plots in build/results/experiment.
+    ./build/bin/contour_reg experiment --out build/results/experiment
     ;;
   test)
     build
     ctest --test-dir build --output-on-failure -j"$(nproc)"
     ;;
-  *) echo "usage: $0 [build|run|test]" >&2; exit 2 ;;
+  sanitize)
+    install_packages "${PACKAGES[@]}"
+    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONTOUR_REG_SANITIZE=ON
+    cmake --build build-asan -j"$(nproc)"
+    # The consumer project installs and links the package without the sanitizer runtime.
+    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+      ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -E consumer_project
+    ;;
+  fuzz)
+    install_packages "${PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
+    tests/fuzz/run_fuzzers.sh "${2:-60}"
+    ;;
+  *) echo "usage: $0 [build|run|test|sanitize|fuzz [SECONDS]]" >&2; exit 2 ;;
 esac

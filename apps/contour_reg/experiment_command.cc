@@ -1,6 +1,7 @@
 // contour_reg experiment: the paper's experiment (Table 1) on the built-in office or any
 // map: every path x LIDAR rate x arrival, each method on the same simulated scans.
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -69,12 +70,29 @@ void writeTables(const ExperimentOptions &options, const std::string &descriptio
   table << "# Experiment: end-point error over path length\n\n" << description << "\n\n";
   table << "Median over the arrivals of |end position error| / path length, % (worst arrival in brackets). "
            "The paper's row is its Table 1 (Gazebo, Willow Garage map).\n\n";
-  table << "| LIDAR rate | method |";
-  for (const std::string &path : options.paths) table << " " << path << " |";
-  table << "\n|---|---|";
-  for (std::size_t k = 0; k < options.paths.size(); ++k) table << "---|";
-  table << "\n";
   char value[64];
+  auto header = [&]() {
+    table << "| LIDAR rate | method |";
+    for (const std::string &path : options.paths) table << " " << path << " |";
+    table << "\n|---|---|";
+    for (std::size_t k = 0; k < options.paths.size(); ++k) table << "---|";
+    table << "\n";
+  };
+  // One table row: the cell of every path, written into `value` by `format`.
+  auto row = [&](double rate, const std::string &method, const std::function<void(const experiment::CellSummary &)> &format) {
+    table << "| " << rateName(rate) << " Hz | " << method << " |";
+    for (const std::string &path : options.paths) {
+      const auto found = by_key.find({rate, method, path});
+      if (found == by_key.end()) {
+        table << " - |";
+        continue;
+      }
+      format(*found->second);
+      table << value;
+    }
+    table << "\n";
+  };
+  header();
   for (double rate : options.rates) {
     bool paper_row = false;
     for (const std::string &path : options.paths) paper_row |= experiment::paperMedianPercent(path, rate).has_value();
@@ -87,42 +105,18 @@ void writeTables(const ExperimentOptions &options, const std::string &descriptio
       }
       table << "\n";
     }
-    for (const std::string &method : methods) {
-      table << "| " << rateName(rate) << " Hz | " << method << " |";
-      for (const std::string &path : options.paths) {
-        const auto found = by_key.find({rate, method, path});
-        if (found == by_key.end()) {
-          table << " - |";
-          continue;
-        }
-        std::snprintf(value, sizeof value, " %.2f (%.2f) |", found->second->median_percent, found->second->worst_percent);
-        table << value;
-      }
-      table << "\n";
-    }
+    for (const std::string &method : methods)
+      row(rate, method, [&](const experiment::CellSummary &cell) {
+        std::snprintf(value, sizeof value, " %.2f (%.2f) |", cell.median_percent, cell.worst_percent);
+      });
   }
   table << "\nFailed registrations / registrations over all arrivals, and the median ms per registration:\n\n";
-  table << "| LIDAR rate | method |";
-  for (const std::string &path : options.paths) table << " " << path << " |";
-  table << "\n|---|---|";
-  for (std::size_t k = 0; k < options.paths.size(); ++k) table << "---|";
-  table << "\n";
-  for (double rate : options.rates) {
-    for (const std::string &method : options.methods) {
-      table << "| " << rateName(rate) << " Hz | " << method << " |";
-      for (const std::string &path : options.paths) {
-        const auto found = by_key.find({rate, method, path});
-        if (found == by_key.end()) {
-          table << " - |";
-          continue;
-        }
-        std::snprintf(value, sizeof value, " %zu / %zu, %.2f ms |", found->second->failures,
-                      found->second->registrations, found->second->median_ms);
-        table << value;
-      }
-      table << "\n";
-    }
-  }
+  header();
+  for (double rate : options.rates)
+    for (const std::string &method : options.methods)
+      row(rate, method, [&](const experiment::CellSummary &cell) {
+        std::snprintf(value, sizeof value, " %zu / %zu, %.2f ms |", cell.failures, cell.registrations, cell.median_ms);
+      });
 
   const fs::path out(options.out);
   std::FILE *file = std::fopen((out / "table.md").string().c_str(), "w");

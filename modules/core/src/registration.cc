@@ -169,7 +169,8 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
     result.covariance = refined.covariance;
-    result.degenerate = refined.degenerate;
+    // Three corners or more pin every direction; fewer leave it to the contours.
+    result.degenerate = refined.degenerate && inlier_sources.size() < 3;
     result.transform = refined.transform;
     if (verify_two && refined.overlap < params.two_inlier_min_overlap) {
       result.transform = guess ? *guess : Eigen::Matrix3d::Identity();

@@ -62,6 +62,11 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       }
       match.milliseconds = first_ms + retry.milliseconds;
     }
+    if (match.converged && match.degenerate && options.reject_degenerate) {
+      match.converged = false;
+      match.status = "degenerate";
+      match.reason = "converged, but the scans leave a direction unconstrained";
+    }
     ++run.stats.registrations;
     if (options.on_match) options.on_match(reference, k, match);
     run.stats.milliseconds.push_back(match.milliseconds);

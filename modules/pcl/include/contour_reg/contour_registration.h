@@ -33,9 +33,10 @@ namespace contour_reg {
 ///
 /// Failure: hasConverged() is false and getFailureReason() says why (too few special
 /// points, too few inliers, degenerate geometry); the final transformation is the guess.
-/// An empty or all-NaN cloud is reported with PCL_ERROR. isDegenerate() flags estimates
-/// the contours leave unconstrained in some direction (a corridor), and getCovariance()
-/// gives the 3x3 covariance of x, y, yaw.
+/// An empty or all-NaN cloud is reported with PCL_ERROR. isDegenerate() flags converged
+/// estimates left unconstrained in some direction (a corridor or a single wall with fewer
+/// than three inlier corners); contour_reg's odometry treats them as failures.
+/// getCovariance() gives the 3x3 covariance of x, y, yaw (calibrated: mean NEES about 3).
 template <typename PointSource, typename PointTarget, typename Scalar = float>
 class ContourRegistration : public pcl::Registration<PointSource, PointTarget, Scalar> {
  public:

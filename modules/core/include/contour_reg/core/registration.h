@@ -76,7 +76,9 @@ struct RegistrationResult {
   double contour_rmse = 0.0;      ///< m, point-to-line after refinement (0 without it)
   double overlap = 0.0;           ///< fraction of source contour paired by the refinement
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw of the estimate
-  bool degenerate = false;        ///< the contours leave some direction unconstrained
+  /// Some direction of the estimate is unconstrained: the contours leave it so (a corridor,
+  /// a single wall) and fewer than three inlier corners pin it.
+  bool degenerate = false;
   /// True when the corners could not decide and the estimate is the guess refined on the
   /// contours (a local answer: right only when the guess was close enough).
   bool from_local_fallback = false;

@@ -31,6 +31,9 @@ struct OdometryOptions {
   /// A registration that fails from the guess is tried once more from the constant-velocity
   /// prediction (when that differs); only if both fail does the scan count as failed.
   bool retry_with_velocity = true;
+  /// A registration that converged but says it is degenerate (MatchResult::degenerate) is
+  /// treated as failed: bridged, not chained, and counted.
+  bool reject_degenerate = true;
   /// Called after every scan with (scans done, scans in all).
   std::function<void(std::size_t, std::size_t)> progress;
   /// Called after every registration with (reference scan index, scan index, result).
