@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <Eigen/Dense>
 
@@ -90,11 +91,26 @@ bool RefinementParams::validate(std::string *why) const {
   return true;
 }
 
+struct ContourRefiner::Index {
+  BearingIndex bearing;
+  explicit Index(const ContourFeatures &target) : bearing(target) {}
+};
+
+ContourRefiner::ContourRefiner(const ContourFeatures &target, const RefinementParams &params)
+    : index_(std::make_unique<Index>(target)), params_(params) {}
+
+ContourRefiner::~ContourRefiner() = default;
+
 RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
                                   const Eigen::Matrix3d &initial, const RefinementParams &params) {
+  return ContourRefiner(target, params).refine(source, initial);
+}
+
+RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eigen::Matrix3d &initial) const {
+  const RefinementParams &params = params_;
+  const BearingIndex &index = index_->bearing;
   RefinementResult result;
   result.transform = initial;
-  const BearingIndex index(target);
   const std::vector<Eigen::Vector2d> samples = sourceSamples(source, params.sample_step);
   if (samples.empty() || index.points.empty()) return result;
 

@@ -69,7 +69,8 @@ namespace {
 RefinementResult refineBest(const ContourFeatures &source, const ContourFeatures &target, const Eigen::Matrix3d &coarse,
                             const std::vector<Eigen::Matrix3d> &rivals, const RegistrationParams &params,
                             const Eigen::Matrix3d *guess) {
-  RefinementResult best = refineOnContours(source, target, coarse, params.refinement);
+  const ContourRefiner refiner(target, params.refinement);
+  RefinementResult best = refiner.refine(source, coarse);
   if (rivals.empty()) return best;
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
   auto distance = [&prior](const Eigen::Matrix3d &t) {  // m, with 1 m per rad of turn
@@ -78,7 +79,7 @@ RefinementResult refineBest(const ContourFeatures &source, const ContourFeatures
   };
   constexpr double kOverlapTie = 0.05;
   for (const Eigen::Matrix3d &rival : rivals) {
-    const RefinementResult refined = refineOnContours(source, target, rigidPart(rival), params.refinement);
+    const RefinementResult refined = refiner.refine(source, rigidPart(rival));
     const bool better = refined.overlap > best.overlap + kOverlapTie ||
                         (refined.overlap > best.overlap - kOverlapTie && distance(refined.transform) < distance(best.transform));
     if (better) best = refined;

@@ -11,6 +11,7 @@
 /// (a corridor constrains nothing along its axis) the corner estimate is kept. The
 /// information matrix also gives the covariance of the estimate.
 
+#include <memory>
 #include <string>
 
 #include <Eigen/Core>
@@ -57,5 +58,21 @@ struct RefinementResult {
 /// Refines `initial` (source to target, rigid) on the contours of two scans.
 RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
                                   const Eigen::Matrix3d &initial, const RefinementParams &params);
+
+/// Refines several starting motions against one target, whose search index it builds once.
+class ContourRefiner {
+ public:
+  ContourRefiner(const ContourFeatures &target, const RefinementParams &params);
+  ~ContourRefiner();
+  ContourRefiner(const ContourRefiner &) = delete;
+  ContourRefiner &operator=(const ContourRefiner &) = delete;
+
+  RefinementResult refine(const ContourFeatures &source, const Eigen::Matrix3d &initial) const;
+
+ private:
+  struct Index;
+  std::unique_ptr<Index> index_;
+  RefinementParams params_;
+};
 
 }  // namespace contour_reg
