@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) into build-fuzz/ and runs each for
 # SECONDS (default 60) from its seed corpus in tests/fuzz/corpus/. Findings are written to
-# build-fuzz/findings/; the script fails when a target crashes, leaks or hangs.
+# build-fuzz/findings/; the script fails when a target crashes, leaks or hangs. The random
+# seed is FUZZ_SEED (default 1), so a run can be repeated; FUZZ_SEED=0 draws one.
 #
 #   tests/fuzz/run_fuzzers.sh [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds="${1:-60}"
+seed="${FUZZ_SEED:-1}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONTOUR_REG_BUILD_FUZZERS=ON \
   -DBUILD_TESTING=OFF -DCONTOUR_REG_BUILD_APPS=OFF -DCONTOUR_REG_WITH_ROSBAG=OFF >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target carmen_fuzzer pcd_folder_fuzzer pipeline_fuzzer
@@ -17,7 +19,7 @@ for target in carmen pcd_folder pipeline; do
   mkdir -p "$corpus"
   seeds="tests/fuzz/corpus/${target%_folder}"
   echo "fuzz: ${target} for ${seconds} s"
-  if ! "build-fuzz/bin/${target}_fuzzer" "$corpus" "$seeds" -max_total_time="$seconds" -timeout=10 \
+  if ! "build-fuzz/bin/${target}_fuzzer" "$corpus" "$seeds" -max_total_time="$seconds" -seed="$seed" -timeout=10 \
       -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="build-fuzz/findings/${target}-" -print_final_stats=1 \
       2> "build-fuzz/findings/${target}.log"; then
     echo "fuzz: ${target} FOUND A PROBLEM, see build-fuzz/findings/${target}.log"
