@@ -10,7 +10,7 @@ namespace {
 
 bool isUsable(const Complex &point, const SegmentationParams &params) {
   if (!isFinite(point)) return false;
-  const double range = std::abs(point);
+  const double range = magnitude(point);
   return range > 0.0 && range >= params.range_min &&
          (params.range_max <= 0.0 || range < params.range_max);
 }
@@ -54,7 +54,7 @@ ComplexSequence differentialCode(const ComplexSequence &points) {
 
 double polylineLength(const ComplexSequence &points) {
   double length = 0.0;
-  for (std::size_t n = 0; n + 1 < points.size(); ++n) length += std::abs(points[n + 1] - points[n]);
+  for (std::size_t n = 0; n + 1 < points.size(); ++n) length += magnitude(points[n + 1] - points[n]);
   return length;
 }
 
@@ -74,8 +74,8 @@ std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
     }
     if (!current.points.empty()) {
       const Complex &previous = current.points.back();
-      const double range = std::min(std::abs(point), std::abs(previous));
-      if (std::abs(point - previous) > params.max_gap + params.max_gap_ratio * range) close_current();
+      const double range = std::min(magnitude(point), magnitude(previous));
+      if (magnitude(point - previous) > params.max_gap + params.max_gap_ratio * range) close_current();
     }
     current.points.push_back(point);
     current.beam_indices.push_back(static_cast<int>(n));

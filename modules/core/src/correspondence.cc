@@ -75,11 +75,11 @@ double fragmentDistanceSquared(const ComplexSequence &source, const ComplexSeque
   double norm_g = 0.0, norm_n = 0.0;
   for (std::size_t m = 0; m < source.size() && m < target.size(); ++m) {
     product += target[m] * std::conj(source[m]);
-    norm_g += std::norm(source[m]);
-    norm_n += std::norm(target[m]);
+    norm_g += squaredMagnitude(source[m]);
+    norm_n += squaredMagnitude(target[m]);
   }
   if (rotation) *rotation = std::arg(product);
-  const double overlap = form == FragmentDistance::kReal ? product.real() : std::abs(product);
+  const double overlap = form == FragmentDistance::kReal ? product.real() : magnitude(product);
   return std::max(0.0, norm_g + norm_n - 2.0 * overlap);
 }
 

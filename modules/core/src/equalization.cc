@@ -35,7 +35,7 @@ bool EqualizationParams::validate(std::string *why) const {
 
 std::vector<double> arcLengths(const ComplexSequence &points) {
   std::vector<double> arc(points.size(), 0.0);
-  for (std::size_t n = 1; n < points.size(); ++n) arc[n] = arc[n - 1] + std::abs(points[n] - points[n - 1]);
+  for (std::size_t n = 1; n < points.size(); ++n) arc[n] = arc[n - 1] + magnitude(points[n] - points[n - 1]);
   return arc;
 }
 

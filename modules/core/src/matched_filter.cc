@@ -47,11 +47,11 @@ double matchedFilterOutput(const ComplexSequence &window, const ComplexSequence 
   double norm_g = 0.0, norm_t = 0.0;
   for (std::size_t m = 0; m < window.size() && m < reference.size(); ++m) {
     product += window[m] * std::conj(reference[m]);
-    norm_g += std::norm(window[m]);
-    norm_t += std::norm(reference[m]);
+    norm_g += squaredMagnitude(window[m]);
+    norm_t += squaredMagnitude(reference[m]);
   }
   if (norm_g <= 0.0 || norm_t <= 0.0) return 0.0;
-  return std::abs(product) / std::sqrt(norm_g * norm_t);
+  return magnitude(product) / std::sqrt(norm_g * norm_t);
 }
 
 CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilterParams &params) {
@@ -65,7 +65,7 @@ CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilter
 
   // Prefix sums of |e(r)|^2 give |G(n)| in O(1).
   std::vector<double> energy(vertices, 0.0);
-  for (std::size_t r = 0; r + 1 < vertices; ++r) energy[r + 1] = energy[r] + std::norm(contour.element(r));
+  for (std::size_t r = 0; r + 1 < vertices; ++r) energy[r + 1] = energy[r] + squaredMagnitude(contour.element(r));
 
   const std::vector<BankElement> bank = makeBank(params);
   const double norm_t = std::sqrt(2.0 * static_cast<double>(s));  // |T|: 2s unit vectors
@@ -75,10 +75,10 @@ CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilter
     const double norm_g = std::sqrt(energy[n + s] - energy[n - s]);
     if (norm_g <= 0.0) continue;
     const double scale = 1.0 / (norm_g * norm_t);
-    const double eta_line = std::abs(arm1 + arm2) * scale;  // eq. (13): straight-line output
+    const double eta_line = magnitude(arm1 + arm2) * scale;  // eq. (13): straight-line output
     double best = 0.0;
     for (const BankElement &element : bank) {
-      const double eta_corner = std::abs(arm1 + element.conj_arm2 * arm2) * scale;  // eq. (12)
+      const double eta_corner = magnitude(arm1 + element.conj_arm2 * arm2) * scale;  // eq. (12)
       const double c = eta_corner - eta_line;
       if (c > best) {
         best = c;

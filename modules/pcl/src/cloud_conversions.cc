@@ -4,8 +4,11 @@ namespace contour_reg {
 
 bool isInBearingOrder(const ComplexSequence &points) {
   int wraps = 0;
+  double previous = points.empty() ? 0.0 : std::arg(points.front());
   for (std::size_t n = 1; n < points.size(); ++n) {
-    const double step = std::arg(points[n]) - std::arg(points[n - 1]);
+    const double current = std::arg(points[n]);
+    const double step = current - previous;
+    previous = current;
     if (step >= 0.0) continue;
     if (step < -M_PI && ++wraps <= 1) continue;  // crossed +-pi going counter-clockwise
     return false;
