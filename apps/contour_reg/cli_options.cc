@@ -14,12 +14,6 @@ void printReadReport(const io::ScanLog &log) {
                  log.report.reordered);
 }
 
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<std::size_t>(q * double(values.size() - 1) + 0.5)];
-}
-
 }  // namespace contour_reg::cli
 
 #include <unistd.h>

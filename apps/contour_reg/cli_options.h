@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/odometry/odometry.h"
 #include "contour_reg/odometry/scan_matcher.h"
@@ -73,8 +74,7 @@ inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames(
 /// Prints the reader's warnings (skipped lines, the first few described) to stderr.
 void printReadReport(const io::ScanLog &log);
 
-/// Percentile q in [0, 1] of `values` (0 when empty).
-double percentile(std::vector<double> values, double q);
+using evaluation::percentile;
 
 }  // namespace contour_reg::cli
 

@@ -70,17 +70,6 @@ std::string reference(const std::vector<std::string> &given, std::size_t k, cons
   return fs::exists(beside) ? beside.string() : std::string();
 }
 
-io::Trajectory wheelOdometry(const io::ScanLog &log) {
-  io::Trajectory trajectory;
-  std::optional<io::Pose2D> origin;
-  for (const io::LogEntry &entry : log.entries) {
-    if (!entry.odometry) continue;
-    if (!origin) origin = entry.odometry;
-    trajectory.push_back({entry.scan.stamp, io::between(*origin, *entry.odometry)});
-  }
-  return trajectory;
-}
-
 std::string cell(const std::optional<double> &value, const char *format) {
   if (!value) return "-";
   char text[64];
@@ -207,7 +196,7 @@ int runCompare(const CompareOptions &options) {
 
   // The log's own wheel odometry, where it has it, as a baseline row.
   for (const Input &input : inputs) {
-    const io::Trajectory wheel = wheelOdometry(input.log);
+    const io::Trajectory wheel = odometry::wheelOdometry(input.log);
     if (wheel.size() < 2) continue;
     Row row;
     row.input = input.name;

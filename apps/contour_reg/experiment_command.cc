@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <set>
 #include <sstream>
 
 #include <pcl/console/print.h>
@@ -15,6 +14,7 @@
 #include "contour_reg/drawing/debug_images.h"
 #include "contour_reg/experiment/paper_experiment.h"
 #include "contour_reg/io/trajectory.h"
+#include "contour_reg/simulation/paths.h"
 #include "scenario.h"
 
 namespace contour_reg::cli {
@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 struct ExperimentOptions {
   std::string out;
-  std::vector<std::string> paths = {"S", "L", "Y", "O"};
+  std::vector<std::string> paths = simulation::pathShapes();
   std::vector<double> rates = {5.0, 2.0, 1.0};
   std::vector<std::string> methods = {"contour", "icp", "ndt2d"};
   int arrivals = 10;

@@ -7,26 +7,10 @@
 #include <thread>
 
 #include "contour_reg/evaluation/metrics.h"
-#include "contour_reg/io/pose2d.h"
 
 namespace contour_reg::experiment {
 
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-io::Trajectory wheelOdometry(const io::ScanLog &log) {
-  io::Trajectory trajectory;
-  for (const io::LogEntry &entry : log.entries)
-    if (entry.odometry && log.entries.front().odometry)
-      trajectory.push_back({entry.scan.stamp, io::between(*log.entries.front().odometry, *entry.odometry)});
-  return trajectory;
-}
 
 struct Arrival {
   std::string path;
@@ -91,14 +75,14 @@ std::vector<ArrivalResult> runExperiment(const simulation::World &world,
         io::Trajectory estimate;
         if (m < settings.methods.size()) {
           result.method = settings.methods[m];
-          const odometry::OdometryRun odometry = odometry::runOdometry(run.log, *matchers[result.method], options);
-          estimate = odometry.trajectory;
-          result.registrations = odometry.stats.registrations;
-          result.failures = odometry.stats.failures;
-          result.median_ms = median(odometry.stats.milliseconds);
+          const odometry::OdometryRun chained = odometry::runOdometry(run.log, *matchers[result.method], options);
+          estimate = chained.trajectory;
+          result.registrations = chained.stats.registrations;
+          result.failures = chained.stats.failures;
+          result.median_ms = evaluation::median(chained.stats.milliseconds);
         } else {
           result.method = kWheelOdometry;
-          estimate = wheelOdometry(run.log);
+          estimate = odometry::wheelOdometry(run.log);
         }
         const evaluation::EndPointError error =
             evaluation::endPointError(evaluation::associate(estimate, run.ground_truth));
@@ -142,9 +126,9 @@ std::vector<CellSummary> summarize(const std::vector<ArrivalResult> &results) {
     milliseconds[found->second].push_back(r.median_ms);
   }
   for (std::size_t k = 0; k < cells.size(); ++k) {
-    cells[k].median_percent = median(percents[k]);
+    cells[k].median_percent = evaluation::median(percents[k]);
     cells[k].worst_percent = *std::max_element(percents[k].begin(), percents[k].end());
-    cells[k].median_ms = median(milliseconds[k]);
+    cells[k].median_ms = evaluation::median(milliseconds[k]);
   }
   return cells;
 }

@@ -23,6 +23,17 @@ std::optional<io::Pose2D> wheelMotion(const io::LogEntry &a, const io::LogEntry 
 
 }  // namespace
 
+io::Trajectory wheelOdometry(const io::ScanLog &log) {
+  io::Trajectory trajectory;
+  std::optional<io::Pose2D> origin;
+  for (const io::LogEntry &entry : log.entries) {
+    if (!entry.odometry) continue;
+    if (!origin) origin = entry.odometry;
+    trajectory.push_back({entry.scan.stamp, between(*origin, *entry.odometry)});
+  }
+  return trajectory;
+}
+
 OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const OdometryOptions &options) {
   OdometryRun run;
   const auto &entries = log.entries;

@@ -3,17 +3,14 @@
 #include <cmath>
 #include <random>
 
+#include "contour_reg/io/pose2d.h"
 #include "contour_reg/simulation/paths.h"
 
 namespace contour_reg::simulation {
 
 namespace {
 
-double yawOf(const Eigen::Isometry2d &pose) { return std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)); }
-
-io::Pose2D toPose(const Eigen::Isometry2d &pose) {
-  return {pose.translation().x(), pose.translation().y(), yawOf(pose)};
-}
+io::Pose2D toPose(const Eigen::Isometry2d &pose) { return io::toPose(pose.matrix()); }
 
 }  // namespace
 
@@ -54,7 +51,7 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
     if (k > 0) {  // wheel odometry: the true increment with proportional noise
       const Eigen::Isometry2d step = previous_truth.inverse() * truth;
       const double scale = 1.0 + settings.odometry_noise * unit(rng);
-      const double yaw = yawOf(step) * (1.0 + settings.odometry_noise * unit(rng)) +
+      const double yaw = toPose(step).yaw * (1.0 + settings.odometry_noise * unit(rng)) +
                          0.2 * settings.odometry_noise * unit(rng) * step.translation().norm();
       Eigen::Isometry2d noisy = Eigen::Isometry2d::Identity();
       noisy.translate(step.translation() * scale);

@@ -13,6 +13,11 @@
 
 namespace contour_reg::evaluation {
 
+/// Percentile q in [0, 1] of `values`, the nearest sample (0 when empty).
+double percentile(std::vector<double> values, double q);
+/// Median of `values`, the mean of the two middle ones for an even count (0 when empty).
+double median(std::vector<double> values);
+
 /// The pose of `trajectory` (stamp order) at `stamp`, interpolated between the samples
 /// around it; nothing outside its span or when those samples are more than `max_gap` s apart.
 std::optional<io::Pose2D> poseAt(const io::Trajectory &trajectory, double stamp, double max_gap = 1.0);

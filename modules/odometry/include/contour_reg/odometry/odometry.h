@@ -55,6 +55,10 @@ struct OdometryRun {
   OdometryStats stats;
 };
 
+/// The log's own wheel odometry as a trajectory, starting at the origin with the first scan
+/// that has it; scans without it are left out.
+io::Trajectory wheelOdometry(const io::ScanLog &log);
+
 /// Runs odometry over `log` with `matcher`. A registration that fails is retried from the
 /// constant-velocity prediction (retry_with_velocity); one that fails again is never chained: the
 /// scan's pose comes from the wheel odometry when the log has it and the guess source is
