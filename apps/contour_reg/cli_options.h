@@ -23,7 +23,8 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
 
 /// Method settings worth studying from the command line; defaults are the library's.
 struct MethodOptions {
-  double contour_step = 0.05, threshold = 0.08, local_fallback = RegistrationParams{}.local_fallback_min_overlap;
+  double contour_step = 0.05, threshold = 0.08, local_fallback = RegistrationParams{}.local_fallback_min_overlap,
+         local_fallback_constraint = RegistrationParams{}.local_fallback_min_constraint;
   int candidates = 3, arm_elements = 5;
   double icp_max_correspondence = 1.0, ndt_resolution = 1.0;
   int iterations = 50;
@@ -35,6 +36,7 @@ struct MethodOptions {
     s.contour.corner_filter.arm_elements = arm_elements;
     s.registration.correspondence.candidates_per_point = candidates;
     s.registration.local_fallback_min_overlap = local_fallback;
+    s.registration.local_fallback_min_constraint = local_fallback_constraint;
     s.icp_max_correspondence = icp_max_correspondence;
     s.icp_iterations = iterations;
     s.ndt_resolution = ndt_resolution;
@@ -49,6 +51,9 @@ inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
   command.add_option("--arm", options.arm_elements, "Contour: elements per corner arm")->capture_default_str();
   command.add_option("--local-fallback", options.local_fallback,
                      "Contour: min contour overlap to accept the refined guess when corners cannot decide (0: off)")
+      ->capture_default_str();
+  command.add_option("--local-fallback-constraint", options.local_fallback_constraint,
+                     "Contour: min weakest/strongest constraint ratio the local fallback needs (corridors fall below)")
       ->capture_default_str();
   command.add_option("--icp-max-distance", options.icp_max_correspondence, "ICP/GICP: max correspondence distance (m)")
       ->capture_default_str();

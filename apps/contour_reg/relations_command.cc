@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 #include <pcl/console/print.h>
 
 #include "cli_options.h"
 #include "commands.h"
+#include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
 #include "contour_reg/odometry/scan_matcher.h"
@@ -23,6 +25,8 @@ struct RelationsOptions {
   std::vector<std::string> methods = {"contour", "contour+icp", "icp", "ndt2d"};
   double max_dt = 5.0, tolerance = 0.10, tolerance_deg = 2.0;
   std::size_t limit = 0;
+  std::string pairs_csv;     // one row per relation and method, when set
+  std::size_t log_pose_gap = 0;  // > 0: pairs k, k + gap referenced by the log's own poses
   io::LogReadOptions read;
   MethodOptions method_options;
 };
@@ -35,17 +39,51 @@ std::size_t nearestScan(const io::ScanLog &log, double stamp) {
   return k;
 }
 
+// A scan pair to register and its reference motion (the second scan's pose in the first's frame).
+struct ScanPair {
+  std::size_t first = 0, second = 0;
+  io::Relation reference;
+};
+
+std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const RelationsOptions &options) {
+  std::vector<ScanPair> pairs;
+  for (const io::Relation &r : io::readRelations(options.relations))
+    if (std::abs(r.t2 - r.t1) <= options.max_dt) pairs.push_back({nearestScan(log, r.t1), nearestScan(log, r.t2), r});
+  return pairs;
+}
+
+// Scan k and scan k + gap, referenced by the poses the log itself carries (in the GMapping-
+// corrected Radish logs, the corrected pose; in a raw log, wheel odometry).
+std::vector<ScanPair> pairsFromLogPoses(const io::ScanLog &log, std::size_t gap) {
+  std::vector<ScanPair> pairs;
+  for (std::size_t k = 0; k + gap < log.entries.size(); ++k) {
+    const io::LogEntry &a = log.entries[k], &b = log.entries[k + gap];
+    if (!a.odometry || !b.odometry) continue;
+    pairs.push_back({k, k + gap, {a.scan.stamp, b.scan.stamp, io::between(*a.odometry, *b.odometry)}});
+  }
+  return pairs;
+}
+
 int runRelations(const RelationsOptions &options) {
   // PCL's classes print a line per failed pair; the table counts them instead.
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const io::ScanLog log = io::readLog(options.input, options.read);
   printReadReport(log);
-  std::vector<io::Relation> relations;
-  for (const io::Relation &r : io::readRelations(options.relations))
-    if (std::abs(r.t2 - r.t1) <= options.max_dt) relations.push_back(r);
-  if (options.limit > 0 && relations.size() > options.limit) relations.resize(options.limit);
-  std::printf("%s: %zu relations with |t2 - t1| <= %.1f s, zero guess, success = within %.2f m and %.1f deg\n\n",
-              options.input.c_str(), relations.size(), options.max_dt, options.tolerance, options.tolerance_deg);
+  std::vector<ScanPair> pairs =
+      options.log_pose_gap > 0 ? pairsFromLogPoses(log, options.log_pose_gap) : pairsFromRelations(log, options);
+  if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
+  if (options.log_pose_gap > 0)
+    std::printf("%s: %zu pairs of scans %zu apart, referenced by the log's poses, zero guess, success = within %.2f m and %.1f deg\n\n",
+                options.input.c_str(), pairs.size(), options.log_pose_gap, options.tolerance, options.tolerance_deg);
+  else
+    std::printf("%s: %zu relations with |t2 - t1| <= %.1f s, zero guess, success = within %.2f m and %.1f deg\n\n",
+                options.input.c_str(), pairs.size(), options.max_dt, options.tolerance, options.tolerance_deg);
+  std::FILE *csv = nullptr;
+  if (!options.pairs_csv.empty()) {
+    csv = std::fopen(options.pairs_csv.c_str(), "w");
+    if (!csv) throw std::runtime_error("cannot write " + options.pairs_csv);
+    std::fprintf(csv, "method,first,second,t1,t2,dx,dy,dyaw,x,y,yaw,converged,recovered,error_m,error_deg,ms,status,reason\n");
+  }
   std::printf("| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const std::string &name : options.methods) {
@@ -54,9 +92,9 @@ int runRelations(const RelationsOptions &options) {
     std::size_t recovered = 0, converged = 0, wrong = 0;
     double error_sum = 0.0;
     std::vector<double> ms;
-    for (const io::Relation &r : relations) {
-      const LaserScan &a = log.entries[nearestScan(log, r.t1)].scan, &b = log.entries[nearestScan(log, r.t2)].scan;
-      const odometry::MatchResult match = matcher->match(a, b);
+    for (const ScanPair &pair : pairs) {
+      const io::Relation &r = pair.reference;
+      const odometry::MatchResult match = matcher->match(log.entries[pair.first].scan, log.entries[pair.second].scan);
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
       const double et = std::hypot(t(0, 2) - r.motion.x, t(1, 2) - r.motion.y);
@@ -65,18 +103,24 @@ int runRelations(const RelationsOptions &options) {
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
       wrong += match.converged && !ok;
+      if (csv)
+        std::fprintf(csv, "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\"\n", name.c_str(),
+                     pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2), t(1, 2),
+                     std::atan2(t(1, 0), t(0, 0)), match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er,
+                     match.milliseconds, match.converged ? "converged" : match.status.c_str(), match.reason.c_str());
       if (match.converged && ok) {
         ++recovered;
         error_sum += et;
       }
     }
-    const double n = std::max<double>(1.0, relations.size());
+    const double n = std::max<double>(1.0, pairs.size());
     std::printf("| %s | %.1f %% | %.1f %% | %.1f %% | %.3f | %.3f | %.3f |\n", name.c_str(), 100 * recovered / n,
                 100 * converged / n, 100 * wrong / n, recovered ? error_sum / recovered : 0.0, percentile(ms, 0.5),
                 percentile(ms, 0.95));
     for (const auto &[reason, count] : reasons) std::fprintf(stderr, "  %s failed: %s: %d\n", name.c_str(), reason.c_str(), count);
     std::fflush(stdout);
   }
+  if (csv) std::fclose(csv);
   return 0;
 }
 
@@ -86,13 +130,23 @@ void addRelationsCommand(CLI::App &app) {
   auto options = std::make_shared<RelationsOptions>();
   CLI::App *command = app.add_subcommand("relations", "Register the scan pairs of a relations file from a zero guess");
   command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")->required();
-  command->add_option("--relations", options->relations, "Kuemmerle et al. relations file")->required()->check(CLI::ExistingFile);
+  auto *relations = command->add_option("--relations", options->relations, "Kuemmerle et al. relations file")
+                        ->check(CLI::ExistingFile);
+  auto *gap = command->add_option("--log-poses", options->log_pose_gap,
+                                  "Instead of a relations file: scans k and k + N, referenced by the poses in the log "
+                                  "(the corrected poses of the Radish logs)");
+  relations->excludes(gap);
+  gap->excludes(relations);
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
   command->add_option("--max-dt", options->max_dt, "Only relations at most this far apart (s)")->capture_default_str();
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
+  command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
-  command->callback([options]() { runCommand([&] { return runRelations(*options); }); });
+  command->callback([options, relations, gap]() {
+    if (relations->count() == 0 && gap->count() == 0) throw CLI::RequiredError("--relations or --log-poses");
+    runCommand([&] { return runRelations(*options); });
+  });
 }
 
 }  // namespace contour_reg::cli
