@@ -9,6 +9,7 @@
 #include "contour_reg/core/contour.h"
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/correspondence.h"
+#include "contour_reg/core/direction_histogram.h"
 #include "contour_reg/core/registration.h"
 #include "contour_reg/odometry/scan_matcher.h"
 #include "scenes.h"
@@ -85,6 +86,35 @@ void BM_RansacAndRefinement(benchmark::State &state) {  // stages D-F + refineme
   }
 }
 
+void BM_DirectionHypotheses(benchmark::State &state) {  // the fallback's corner-free motion hypotheses
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  const DirectionHistogramParams params;
+  std::size_t count = 0;
+  for (auto _ : state) {
+    const auto hypotheses = directionHypotheses(b, a, params);
+    count = hypotheses.size();
+    benchmark::DoNotOptimize(hypotheses.data());
+  }
+  state.counters["hypotheses"] = double(count);
+}
+
+void BM_LocalFallback(benchmark::State &state) {  // registration when the corners cannot decide
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  RegistrationParams params;
+  params.min_special_points = 1 << 20;  // no scan has that many: the corners stand aside
+  std::mt19937 rng;
+  RegistrationResult result;
+  for (auto _ : state) {
+    rng.seed(42);
+    result = registerContours(b, a, params, rng);
+    benchmark::DoNotOptimize(result.transform.data());
+  }
+  state.counters["converged"] = result.converged;
+  state.counters["error_mm"] = 1000.0 * std::hypot(result.transform(0, 2) - pair.truth.x(), result.transform(1, 2) - pair.truth.y());
+}
+
 // A matcher on a pair whose clouds are new every iteration (nothing cached): both scans'
 // features are computed, as for a single pair.
 void runPair(benchmark::State &state, const std::string &method) {
@@ -139,6 +169,8 @@ BENCHMARK(BM_SpecialPoints) BEAMS;
 BENCHMARK(BM_Features) BEAMS;
 BENCHMARK(BM_Correspondence) BEAMS;
 BENCHMARK(BM_RansacAndRefinement)->ArgsProduct({{360, 720, 1081}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DirectionHypotheses) BEAMS;
+BENCHMARK(BM_LocalFallback) BEAMS;
 BENCHMARK(BM_PairContour) BEAMS;
 BENCHMARK(BM_OdometryStepContour) BEAMS;
 BENCHMARK(BM_PairContourIcp) BEAMS;

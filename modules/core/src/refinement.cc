@@ -13,19 +13,6 @@ namespace contour_reg {
 
 namespace {
 
-// atan2 within about 1e-5 rad: where the bearing search starts, not a measurement (the
-// search walks on to the nearest point anyway), at a fraction of the library's cost.
-double approximateBearing(double y, double x) {
-  const double ax = std::abs(x), ay = std::abs(y);
-  const double high = std::max(ax, ay), low = std::min(ax, ay);
-  if (high == 0.0) return 0.0;
-  const double a = low / high, s = a * a;
-  double r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
-  if (ay > ax) r = M_PI_2 - r;
-  if (x < 0.0) r = M_PI - r;
-  return y < 0.0 ? -r : r;
-}
-
 // Target contour points sorted by bearing, with their segment, for projective search.
 struct BearingIndex {
   std::vector<Eigen::Vector2d> points;
@@ -48,7 +35,7 @@ struct BearingIndex {
   // Nearest point to p among those near p's bearing; -1 when none within max_distance.
   int nearest(const Eigen::Vector2d &p, double max_distance) const {
     if (points.empty()) return -1;
-    const double b = approximateBearing(p.y(), p.x());
+    const double b = approximateAtan2(p.y(), p.x());
     const long start = std::lower_bound(bearing.begin(), bearing.end(), b) - bearing.begin();
     const long size = static_cast<long>(points.size());
     int best = -1;
@@ -120,7 +107,11 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
 }
 
 RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eigen::Matrix3d &initial) const {
-  const RefinementParams &params = params_;
+  return refine(source, initial, params_);
+}
+
+RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eigen::Matrix3d &initial,
+                                        const RefinementParams &params) const {
   const BearingIndex &index = index_->bearing;
   RefinementResult result;
   result.transform = initial;

@@ -1,4 +1,5 @@
 #include "contour_reg/core/registration.h"
+#include "contour_reg/core/direction_histogram.h"
 
 #include <algorithm>
 #include <cmath>
@@ -40,7 +41,13 @@ double spread(const Points2D &points) {
 }  // namespace
 
 bool RegistrationParams::validate(std::string *why) const {
-  if (!correspondence.validate(why) || !ransac.validate(why) || !refinement.validate(why)) return false;
+  if (!correspondence.validate(why) || !ransac.validate(why) || !refinement.validate(why) ||
+      !direction_histogram.validate(why))
+    return false;
+  if (!(local_fallback_max_distance > 0.0)) {
+    if (why) *why = "local_fallback_max_distance must be > 0";
+    return false;
+  }
   if (min_special_points < 2 || min_inliers < 2) {
     if (why) *why = "min_special_points and min_inliers must be >= 2";
     return false;
@@ -62,29 +69,73 @@ const char *toString(RegistrationStatus status) {
 
 namespace {
 
-// Stages D-F and the refinement, from the corners.
-// RANSAC may end with rival motions as well supported as its best (a symmetric room seen
-// from two corners matched crosswise). Each is refined on the contours; the best overlap
-// wins, and where overlaps tie the motion nearest the guess (no motion without one) wins.
-RefinementResult refineBest(const ContourFeatures &source, const ContourFeatures &target, const Eigen::Matrix3d &coarse,
-                            const std::vector<Eigen::Matrix3d> &rivals, const RegistrationParams &params,
-                            const Eigen::Matrix3d *guess) {
-  const ContourRefiner refiner(target, params.refinement);
-  RefinementResult best = refiner.refine(source, coarse);
-  if (rivals.empty()) return best;
-  const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
-  auto distance = [&prior](const Eigen::Matrix3d &t) {  // m, with 1 m per rad of turn
-    return (t.topRightCorner<2, 1>() - prior.topRightCorner<2, 1>()).norm() +
-           std::abs(std::remainder(yawOf(t) - yawOf(prior), 2.0 * M_PI));
+// A starting motion for the contour refinement, and the refinement settings to use from it.
+struct RefinementStart {
+  Eigen::Matrix3d motion;
+  const RefinementParams *params;
+};
+
+// The best of several starting motions refined on the contours, and whether a distinct
+// motion fits about as well (the scans cannot tell them apart).
+struct BestRefinement {
+  RefinementResult best;
+  bool ambiguous = false;
+};
+
+// The best overlap wins; where overlaps tie, the motion nearest the guess (no motion
+// without one) wins. Many starts are first screened by a short, sparse refinement; the
+// most promising few are refined in full.
+BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &target,
+                          std::vector<RefinementStart> starts, const Eigen::Matrix3d *guess) {
+  auto distance = [](const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {  // m, with 1 m per rad of turn
+    return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
+           std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
   };
-  constexpr double kOverlapTie = 0.05;
-  for (const Eigen::Matrix3d &rival : rivals) {
-    const RefinementResult refined = refiner.refine(source, rigidPart(rival));
-    const bool better = refined.overlap > best.overlap + kOverlapTie ||
-                        (refined.overlap > best.overlap - kOverlapTie && distance(refined.transform) < distance(best.transform));
-    if (better) best = refined;
+  const ContourRefiner refiner(target, *starts.front().params);
+  constexpr std::size_t kRefinedInFull = 3;
+  if (starts.size() > kRefinedInFull) {
+    struct Screened {
+      double overlap;
+      std::size_t start;
+      Eigen::Matrix3d motion;  // after the short refinement
+    };
+    std::vector<Screened> screened;
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+      RefinementParams quick = *starts[k].params;
+      quick.max_iterations = 2;
+      quick.sample_step *= 2.0;
+      const RefinementResult r = refiner.refine(source, rigidPart(starts[k].motion), quick);
+      screened.push_back({r.overlap, k, r.transform});
+    }
+    std::stable_sort(screened.begin(), screened.end(), [](const Screened &a, const Screened &b) { return a.overlap > b.overlap; });
+    // The best few that lead to distinct motions: two starts bound for one motion test nothing new.
+    std::vector<RefinementStart> kept;
+    std::vector<Eigen::Matrix3d> bound_for;
+    for (const Screened &s : screened) {
+      if (kept.size() == kRefinedInFull) break;
+      if (std::any_of(bound_for.begin(), bound_for.end(), [&](const Eigen::Matrix3d &m) { return distance(m, s.motion) < 0.1; }))
+        continue;
+      kept.push_back(starts[s.start]);
+      bound_for.push_back(s.motion);
+    }
+    starts = kept;
   }
-  return best;
+  std::vector<RefinementResult> refined;
+  for (const RefinementStart &start : starts) refined.push_back(refiner.refine(source, rigidPart(start.motion), *start.params));
+  const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
+  constexpr double kOverlapTie = 0.05;
+  BestRefinement result{refined.front()};
+  for (const RefinementResult &r : refined) {
+    const bool better = r.overlap > result.best.overlap + kOverlapTie ||
+                        (r.overlap > result.best.overlap - kOverlapTie &&
+                         distance(r.transform, prior) < distance(result.best.transform, prior));
+    if (better) result.best = r;
+  }
+  constexpr double kDistinct = 0.2;  // m, or 0.2 rad
+  for (const RefinementResult &r : refined)
+    if (r.overlap > result.best.overlap - kOverlapTie && distance(r.transform, result.best.transform) > kDistinct)
+      result.ambiguous = true;
+  return result;
 }
 
 RegistrationResult registerByCorners(const ContourFeatures &source, const ContourFeatures &target,
@@ -166,7 +217,11 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
   }
   result.transform = params.ransac.model == TransformModel::kRigid ? coarse : found.transform;
   if (params.refinement.enabled) {
-    const RefinementResult refined = refineBest(source, target, coarse, found.rivals, params, guess);
+    // RANSAC may end with rival motions as well supported as its best (a symmetric room
+    // seen from two corners matched crosswise): each is refined, and the contours decide.
+    std::vector<RefinementStart> starts{{coarse, &params.refinement}};
+    for (const Eigen::Matrix3d &rival : found.rivals) starts.push_back({rival, &params.refinement});
+    const RefinementResult refined = refineBest(source, target, starts, guess).best;
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
     result.covariance = refined.covariance;
@@ -186,34 +241,47 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
   return result;
 }
 
-// Few corners: the guess, or a motion one pair of corners implies, refined on the contours
-// and kept when well supported.
+// Few corners: the guess, a motion one pair of corners implies, or a motion the contours'
+// directions suggest, refined on the contours and kept when well supported and unambiguous.
 constexpr std::size_t kMaxPairHypotheses = 8;
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                       const Eigen::Matrix3d *guess, RegistrationResult &result) {
-  const Eigen::Matrix3d start = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
-  // Besides the guess, each candidate pair of corners is a full hypothesis on its own: the
-  // rotation arg (N, G) of eq. (14) and the translation that brings the two corners together.
-  std::vector<Eigen::Matrix3d> hypotheses;
+  // The guess may be far off: it is refined from a wider pairing distance.
+  RefinementParams wide = params.refinement;
+  wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
+  std::vector<RefinementStart> starts{{guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), &wide}};
+  // Each candidate pair of corners is a full hypothesis on its own: the rotation arg (N, G)
+  // of eq. (14) and the translation that brings the two corners together.
   if (params.correspondence.distance == FragmentDistance::kModulus) {
     const std::vector<Correspondence> pairs =
         result.candidates.empty() ? findCorrespondences(source.special_points, target.special_points, params.correspondence)
                                   : result.candidates;
-    for (const Correspondence &c : pairs) {
-      if (hypotheses.size() >= kMaxPairHypotheses) break;
+    for (std::size_t k = 0; k < pairs.size() && k < kMaxPairHypotheses; ++k) {
+      const Correspondence &c = pairs[k];
       const Eigen::Matrix3d turn = rigidTransform(0.0, 0.0, c.rotation);
       const Eigen::Vector2d moved = target.special_points[c.target].position -
                                     turn.topLeftCorner<2, 2>() * source.special_points[c.source].position;
-      hypotheses.push_back(rigidTransform(moved.x(), moved.y(), c.rotation));
+      starts.push_back({rigidTransform(moved.x(), moved.y(), c.rotation), &params.refinement});
     }
   }
-  const RefinementResult refined = refineBest(source, target, start, hypotheses, params, guess);
-  const bool weak = refined.degenerate || refined.constraint_ratio < params.local_fallback_min_constraint ||
-                    refined.rotation_constraint_ratio < params.local_fallback_min_constraint;
-  if (refined.overlap < params.local_fallback_min_overlap || weak) {
-    result.reason += weak ? "; refining the guess on the contours leaves a direction weakly constrained (corridor, circle)"
-                                        : "; refining the guess on the contours pairs only " +
-                                              std::to_string(static_cast<int>(100 * refined.overlap)) + " %";
+  if (params.direction_hypotheses)
+    for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, params.direction_histogram, guess))
+      starts.push_back({motion, &params.refinement});
+
+  const BestRefinement found = refineBest(source, target, starts, guess);
+  const RefinementResult &refined = found.best;
+  if (refined.overlap < params.local_fallback_min_overlap) {
+    result.reason += "; refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+                     " % of the source contour lies on the target";
+    return;
+  }
+  if (refined.degenerate || refined.constraint_ratio < params.local_fallback_min_constraint ||
+      refined.rotation_constraint_ratio < params.local_fallback_min_constraint) {
+    result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
+    return;
+  }
+  if (found.ambiguous) {
+    result.reason += "; refined on the contours, distinct motions fit equally well (repeated structure)";
     return;
   }
   result.transform = refined.transform;

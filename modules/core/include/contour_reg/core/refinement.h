@@ -68,6 +68,9 @@ class ContourRefiner {
   ContourRefiner &operator=(const ContourRefiner &) = delete;
 
   RefinementResult refine(const ContourFeatures &source, const Eigen::Matrix3d &initial) const;
+  /// The same with other settings (a wider pairing distance for a rough start, say).
+  RefinementResult refine(const ContourFeatures &source, const Eigen::Matrix3d &initial,
+                          const RefinementParams &params) const;
 
  private:
   struct Index;

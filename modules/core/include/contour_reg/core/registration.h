@@ -16,6 +16,7 @@
 
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/correspondence.h"
+#include "contour_reg/core/direction_histogram.h"
 #include "contour_reg/core/ransac.h"
 #include "contour_reg/core/refinement.h"
 
@@ -25,6 +26,7 @@ struct RegistrationParams {
   CorrespondenceParams correspondence;
   RansacParams ransac;
   RefinementParams refinement;
+  DirectionHistogramParams direction_histogram;
   int min_special_points = 2;    ///< per scan
   int min_inliers = 3;           ///< supporting pairs of distinct special points
   /// Two inliers are accepted when, after refinement, at least this fraction of the
@@ -36,12 +38,18 @@ struct RegistrationParams {
   /// guess_max_rotation, are dropped. <= 0 ignores the guess for pairing.
   double guess_max_distance = 0.0;
   double guess_max_rotation = 0.5;  ///< rad
-  /// When the corners cannot decide (too few special points, pairs or inliers), refine
-  /// the guess (identity without one) on the contours and accept the result when at
-  /// least this fraction of the source contour then lies on the target contour and every
-  /// direction is well constrained (local_fallback_min_constraint). <= 0 disables it:
-  /// such pairs then fail. The result says when it came from here (from_local_fallback).
-  double local_fallback_min_overlap = 0.75;
+  /// When the corners cannot decide (too few special points, pairs or inliers), refine on
+  /// the contours the guess (identity without one), the motion each candidate pair of
+  /// corners implies, and the motions the contour directions suggest (direction_histogram.h),
+  /// and accept the best when at least this fraction of the source contour then lies on the
+  /// target contour, every direction is well constrained (local_fallback_min_constraint) and
+  /// no distinct motion fits as well. <= 0 disables it: such pairs then fail. The result
+  /// says when it came from here (from_local_fallback).
+  double local_fallback_min_overlap = 0.4;
+  /// m, the refinement of the guess in the local fallback starts pairing points this far apart.
+  double local_fallback_max_distance = 1.0;
+  /// Motions from the contours' direction and wall-offset histograms join the fallback's starts.
+  bool direction_hypotheses = true;
   /// The local fallback also needs the contours to constrain every direction: the
   /// translation's weakest / strongest eigenvalue ratio and the rotation's share left once
   /// translation is solved (RefinementResult) both at least this.

@@ -27,6 +27,19 @@ inline double magnitude(const Complex &c) { return std::sqrt(c.real() * c.real()
 /// |c|^2 (std::norm goes through hypot as well).
 inline double squaredMagnitude(const Complex &c) { return c.real() * c.real() + c.imag() * c.imag(); }
 
+/// atan2(y, x) within about 1e-5 rad at a fraction of the library's cost: for where a
+/// search starts or which histogram bin a direction falls in, not for a measurement.
+inline double approximateAtan2(double y, double x) {
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double high = ax > ay ? ax : ay, low = ax > ay ? ay : ax;
+  if (high == 0.0) return 0.0;
+  const double a = low / high, s = a * a;
+  double r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+  if (ay > ax) r = M_PI_2 - r;
+  if (x < 0.0) r = M_PI - r;
+  return y < 0.0 ? -r : r;
+}
+
 /// True when both coordinates are finite numbers.
 inline bool isFinite(const Complex &c) { return std::isfinite(c.real()) && std::isfinite(c.imag()); }
 
