@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <pcl/console/print.h>
 
+#include "contour_reg/cloud_conversions.h"
 #include "scenes.h"
 
 namespace contour_reg {
@@ -74,6 +75,26 @@ TEST(ContourCornerEstimation, WorksForPointXYZIAndShuffledDenseClouds) {
     });
     EXPECT_TRUE(seen) << corner.transpose();
   }
+}
+
+ComplexSequence pointsAtBearings(double from_deg, double to_deg, double step_deg) {
+  ComplexSequence points;
+  for (double a = from_deg; step_deg > 0 ? a <= to_deg : a >= to_deg; a += step_deg)
+    points.push_back(std::polar(2.0 + 0.01 * points.size(), a * M_PI / 180.0));
+  return points;
+}
+
+TEST(CloudConversions, BearingOrderAllowsOneWrapAround) {
+  EXPECT_TRUE(isInBearingOrder(pointsAtBearings(-135, 135, 0.25)));   // a 270-degree scan in beam order
+  EXPECT_TRUE(isInBearingOrder(pointsAtBearings(90, 269, 1.0)));      // crosses +-180 once
+  EXPECT_FALSE(isInBearingOrder(pointsAtBearings(135, -135, -0.25)));  // clockwise
+  EXPECT_FALSE(isInBearingOrder(pointsAtBearings(0, 719, 10.0)));      // two full turns
+  ComplexSequence swapped = pointsAtBearings(-90, 90, 1.0);
+  std::swap(swapped[40], swapped[41]);
+  EXPECT_FALSE(isInBearingOrder(swapped));
+  sortByBearing(swapped);
+  EXPECT_TRUE(isInBearingOrder(swapped));
+  EXPECT_TRUE(isInBearingOrder({}));
 }
 
 TEST(ContourCornerEstimation, EmptyAndInvalidInputGiveEmptyOutput) {

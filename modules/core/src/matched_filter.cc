@@ -76,16 +76,22 @@ CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilter
     if (norm_g <= 0.0) continue;
     const double scale = 1.0 / (norm_g * norm_t);
     const double eta_line = magnitude(arm1 + arm2) * scale;  // eq. (13): straight-line output
-    double best = 0.0;
+    // The best bank element has the largest |arm1 + conj(arm2 reference) arm2|: found on the
+    // squares, one square root per vertex.
+    double best_square = -1.0;
+    const BankElement *best_element = nullptr;
     for (const BankElement &element : bank) {
-      const double eta_corner = magnitude(arm1 + element.conj_arm2 * arm2) * scale;  // eq. (12)
-      const double c = eta_corner - eta_line;
-      if (c > best) {
-        best = c;
-        out.corner_angle[n] = element.angle;
-        out.turn[n] = element.turn;
+      const double square = squaredMagnitude(arm1 + element.conj_arm2 * arm2);
+      if (square > best_square) {
+        best_square = square;
+        best_element = &element;
       }
     }
+    const double eta_corner = std::sqrt(best_square) * scale;  // eq. (12)
+    const double best = eta_corner - eta_line;
+    if (best_element == nullptr || best <= 0.0) continue;
+    out.corner_angle[n] = best_element->angle;
+    out.turn[n] = best_element->turn;
     out.response[n] = best;
   }
   return out;

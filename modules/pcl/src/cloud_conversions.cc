@@ -3,15 +3,15 @@
 namespace contour_reg {
 
 bool isInBearingOrder(const ComplexSequence &points) {
+  // Bearings increase from one point to the next when each turns counter-clockwise from the
+  // one before (a cross product, no arc tangent), and they wrap around at most once: they
+  // cross the negative x axis, from above to below, at most once.
   int wraps = 0;
-  double previous = points.empty() ? 0.0 : std::arg(points.front());
   for (std::size_t n = 1; n < points.size(); ++n) {
-    const double current = std::arg(points[n]);
-    const double step = current - previous;
-    previous = current;
-    if (step >= 0.0) continue;
-    if (step < -M_PI && ++wraps <= 1) continue;  // crossed +-pi going counter-clockwise
-    return false;
+    const Complex &a = points[n - 1], &b = points[n];
+    if (a.real() * b.imag() - a.imag() * b.real() < 0.0) return false;
+    const bool crosses_cut = a.imag() >= 0.0 && b.imag() < 0.0;
+    if (crosses_cut && ++wraps > 1) return false;
   }
   return true;
 }
