@@ -151,19 +151,24 @@ std::vector<Eigen::Matrix3d> directionHypotheses(const ContourFeatures &source, 
   const std::vector<double> turns = peaks(correlation, params.rotations, static_cast<int>(std::ceil(0.1 / bin)), true);
   if (turns.empty()) return hypotheses;
 
-  // 2. The target's wall directions: the folded histogram's peak and the strongest one far enough from it.
-  std::vector<double> folded(n / 2, 0.0);
-  for (int b = 0; b < n; ++b) folded[b % (n / 2)] += ht[b];
-  const std::vector<double> walls = peaks(folded, n / 2, 1, true);
+  // 2. The target's wall directions: the folded histogram's peak and the strongest one far
+  // enough from it, if it holds a fair share of the contour (a door frame across a corridor
+  // is enough; noise around the first peak is not).
+  constexpr double kMinShareOfFirst = 0.02;
+  const int half = n / 2;
+  std::vector<double> folded(half, 0.0);
+  for (int b = 0; b < n; ++b) folded[b % half] += ht[b];
+  const std::vector<double> walls = peaks(folded, half, 1, true);
   if (walls.empty()) return hypotheses;
+  auto height = [&](double wall) { return folded[static_cast<int>(std::lround(wall)) % half]; };
+  auto angleOf = [&](double wall) { return -M_PI + wall * bin; };
   std::vector<Eigen::Vector2d> normals;
   for (double wall : walls) {
-    const double angle = -M_PI + wall * bin;
-    const double separation = std::abs(std::remainder(angle - (-M_PI + walls.front() * bin), M_PI));
-    if (!normals.empty() && separation < params.min_direction_separation) continue;
-    if (!normals.empty() && folded[static_cast<int>(std::lround(wall)) % (n / 2)] < 0.02 * folded[std::lround(walls.front()) % (n / 2)])
-      break;
-    normals.emplace_back(-std::sin(angle), std::cos(angle));
+    if (!normals.empty()) {
+      if (std::abs(std::remainder(angleOf(wall) - angleOf(walls.front()), M_PI)) < params.min_direction_separation) continue;
+      if (height(wall) < kMinShareOfFirst * height(walls.front())) break;
+    }
+    normals.emplace_back(-std::sin(angleOf(wall)), std::cos(angleOf(wall)));
     if (normals.size() == 2) break;
   }
 
