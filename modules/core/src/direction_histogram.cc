@@ -160,7 +160,8 @@ std::vector<Eigen::Matrix3d> directionHypotheses(const ContourFeatures &source, 
   for (int b = 0; b < n; ++b) folded[b % half] += ht[b];
   const std::vector<double> walls = peaks(folded, half, 1, true);
   if (walls.empty()) return hypotheses;
-  auto height = [&](double wall) { return folded[static_cast<int>(std::lround(wall)) % half]; };
+  // A peak's sub-bin position may lie half a bin below 0 (the histogram is circular).
+  auto height = [&](double wall) { return folded[(static_cast<int>(std::lround(wall)) % half + half) % half]; };
   auto angleOf = [&](double wall) { return -M_PI + wall * bin; };
   std::vector<Eigen::Vector2d> normals;
   for (double wall : walls) {
