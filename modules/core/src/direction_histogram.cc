@@ -54,7 +54,9 @@ std::vector<double> peaks(const std::vector<double> &c, int count, int separatio
   for (int i : kept) {
     const double left = at(i - 1), middle = c[i], right = at(i + 1);
     const double curvature = left - 2.0 * middle + right;
-    positions.push_back(i + (curvature < 0.0 ? 0.5 * (left - right) / curvature : 0.0));
+    double position = i + (curvature < 0.0 ? 0.5 * (left - right) / curvature : 0.0);
+    if (circular) position = std::fmod(position + n, static_cast<double>(n));  // within [0, n)
+    positions.push_back(position);
   }
   return positions;
 }
@@ -160,8 +162,7 @@ std::vector<Eigen::Matrix3d> directionHypotheses(const ContourFeatures &source, 
   for (int b = 0; b < n; ++b) folded[b % half] += ht[b];
   const std::vector<double> walls = peaks(folded, half, 1, true);
   if (walls.empty()) return hypotheses;
-  // A peak's sub-bin position may lie half a bin below 0 (the histogram is circular).
-  auto height = [&](double wall) { return folded[(static_cast<int>(std::lround(wall)) % half + half) % half]; };
+  auto height = [&](double wall) { return folded[static_cast<int>(std::lround(wall)) % half]; };
   auto angleOf = [&](double wall) { return -M_PI + wall * bin; };
   std::vector<Eigen::Vector2d> normals;
   for (double wall : walls) {

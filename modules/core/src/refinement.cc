@@ -70,7 +70,9 @@ struct BearingIndex {
   }
 };
 
-std::vector<Eigen::Vector2d> sourceSamples(const ContourFeatures &source, double sample_step) {
+}  // namespace
+
+std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, double sample_step) {
   std::vector<Eigen::Vector2d> samples;
   for (const EqualizedContour &contour : source.contours) {
     if (contour.vertices.empty() || contour.step <= 0.0) continue;
@@ -79,8 +81,6 @@ std::vector<Eigen::Vector2d> sourceSamples(const ContourFeatures &source, double
   }
   return samples;
 }
-
-}  // namespace
 
 bool RefinementParams::validate(std::string *why) const {
   if (max_iterations < 0) return invalid(why, "refinement.max_iterations must be >= 0");
@@ -112,10 +112,14 @@ RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eig
 
 RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eigen::Matrix3d &initial,
                                         const RefinementParams &params) const {
+  return refine(contourSamples(source, params.sample_step), initial, params);
+}
+
+RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &initial,
+                                        const RefinementParams &params) const {
   const BearingIndex &index = index_->bearing;
   RefinementResult result;
   result.transform = initial;
-  const std::vector<Eigen::Vector2d> samples = sourceSamples(source, params.sample_step);
   if (samples.empty() || index.points.empty()) return result;
 
   double x = initial(0, 2), y = initial(1, 2), yaw = yawOf(initial);

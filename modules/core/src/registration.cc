@@ -92,8 +92,13 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
            std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
   };
   const ContourRefiner refiner(target, *starts.front().params);
+  // The starts share their sample spacing: the source is sampled once for the full
+  // refinements and once, twice as sparse, for the screening.
+  const double step = starts.front().params->sample_step;
+  const std::vector<Eigen::Vector2d> samples = contourSamples(source, step);
   constexpr std::size_t kRefinedInFull = 3;
   if (starts.size() > kRefinedInFull) {
+    const std::vector<Eigen::Vector2d> sparse = contourSamples(source, 2.0 * step);
     struct Screened {
       double overlap;
       std::size_t start;
@@ -103,25 +108,23 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
     for (std::size_t k = 0; k < starts.size(); ++k) {
       RefinementParams quick = *starts[k].params;
       quick.max_iterations = 2;
-      quick.sample_step *= 2.0;
-      const RefinementResult r = refiner.refine(source, rigidPart(starts[k].motion), quick);
+      const RefinementResult r = refiner.refine(sparse, rigidPart(starts[k].motion), quick);
       screened.push_back({r.overlap, k, r.transform});
     }
     std::stable_sort(screened.begin(), screened.end(), [](const Screened &a, const Screened &b) { return a.overlap > b.overlap; });
     // The best few that lead to distinct motions: two starts bound for one motion test nothing new.
-    std::vector<RefinementStart> kept;
-    std::vector<Eigen::Matrix3d> bound_for;
+    std::vector<const Screened *> chosen;
     for (const Screened &s : screened) {
-      if (kept.size() == kRefinedInFull) break;
-      if (std::any_of(bound_for.begin(), bound_for.end(), [&](const Eigen::Matrix3d &m) { return distance(m, s.motion) < 0.1; }))
-        continue;
-      kept.push_back(starts[s.start]);
-      bound_for.push_back(s.motion);
+      if (chosen.size() == kRefinedInFull) break;
+      if (std::none_of(chosen.begin(), chosen.end(), [&](const Screened *c) { return distance(c->motion, s.motion) < 0.1; }))
+        chosen.push_back(&s);
     }
+    std::vector<RefinementStart> kept;
+    for (const Screened *c : chosen) kept.push_back(starts[c->start]);
     starts = kept;
   }
   std::vector<RefinementResult> refined;
-  for (const RefinementStart &start : starts) refined.push_back(refiner.refine(source, rigidPart(start.motion), *start.params));
+  for (const RefinementStart &start : starts) refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
   constexpr double kOverlapTie = 0.05;
   BestRefinement result{refined.front()};

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -55,6 +56,9 @@ struct RefinementResult {
   int iterations = 0;
 };
 
+/// The equalized source vertices the refinement pairs: one every `sample_step` m along each contour.
+std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, double sample_step);
+
 /// Refines `initial` (source to target, rigid) on the contours of two scans.
 RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
                                   const Eigen::Matrix3d &initial, const RefinementParams &params);
@@ -70,6 +74,10 @@ class ContourRefiner {
   RefinementResult refine(const ContourFeatures &source, const Eigen::Matrix3d &initial) const;
   /// The same with other settings (a wider pairing distance for a rough start, say).
   RefinementResult refine(const ContourFeatures &source, const Eigen::Matrix3d &initial,
+                          const RefinementParams &params) const;
+  /// The same from the source's samples (contourSamples with params.sample_step), for several
+  /// starting motions of one source.
+  RefinementResult refine(const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &initial,
                           const RefinementParams &params) const;
 
  private:
