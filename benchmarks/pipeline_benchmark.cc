@@ -12,6 +12,7 @@
 #include "contour_reg/core/direction_histogram.h"
 #include "contour_reg/core/registration.h"
 #include "contour_reg/odometry/scan_matcher.h"
+#include "allocation_counter.h"
 #include "scenes.h"
 
 namespace contour_reg::bench {
@@ -60,11 +61,14 @@ void BM_Features(benchmark::State &state) {  // stages A-C of one scan
   const ScanPair pair = scanPair(int(state.range(0)));
   ContourFeatures features;
   const ComplexSequence code = polarCode(pair.source);
+  extractContourFeatures(code, kParams, features);  // warm: the buffers reach their size
+  const std::size_t allocations = allocationCount();
   for (auto _ : state) {
     extractContourFeatures(code, kParams, features);
     benchmark::DoNotOptimize(features.special_points.data());
   }
   state.counters["special_points"] = double(features.special_points.size());
+  state.counters["allocations"] = double(allocationCount() - allocations) / double(state.iterations());
 }
 
 void BM_Correspondence(benchmark::State &state) {  // stage D (eq. 14)
@@ -150,15 +154,44 @@ void BM_OdometryStepContour(benchmark::State &state) {
   const ScanPair pair = scanPair(int(state.range(0)));
   auto matcher = odometry::makeScanMatcher("contour");
   std::vector<LaserScan> scans{pair.target, pair.source};
-  std::size_t k = 0;
+  std::size_t k = 0, allocations = 0;
   for (auto _ : state) {
     state.PauseTiming();
     LaserScan &next = scans[(k + 1) % 2];
     next.stamp = double(k + 1);
+    const std::size_t before = allocationCount();
     state.ResumeTiming();
     benchmark::DoNotOptimize(matcher->match(scans[k % 2], next));
+    state.PauseTiming();
+    allocations += allocationCount() - before;
+    state.ResumeTiming();
     ++k;
   }
+  state.counters["allocations"] = double(allocations) / double(state.iterations());
+}
+
+// The same steady state on the core API: each new scan's features are extracted into the
+// buffers of the scan before last, and registered against the previous scan's.
+void BM_OdometryStepCore(benchmark::State &state) {
+  const ScanPair pair = scanPair(int(state.range(0)));
+  const ComplexSequence codes[2] = {polarCode(pair.target), polarCode(pair.source)};
+  ContourFeatures features[2];
+  const RegistrationParams params;
+  std::mt19937 rng;
+  RegistrationResult result;
+  extractContourFeatures(codes[0], kParams, features[0]);
+  std::size_t k = 0, allocations = 0;
+  for (auto _ : state) {
+    const std::size_t before = allocationCount();
+    ContourFeatures &target = features[k % 2], &source = features[(k + 1) % 2];
+    extractContourFeatures(codes[(k + 1) % 2], kParams, source);
+    rng.seed(42);
+    result = registerContours(source, target, params, rng);
+    benchmark::DoNotOptimize(result.transform.data());
+    if (k >= 2) allocations += allocationCount() - before;  // the first two steps size the buffers
+    ++k;
+  }
+  state.counters["allocations"] = double(allocations) / double(std::max<std::size_t>(1, k - 2));
 }
 
 #define BEAMS ->Arg(360)->Arg(720)->Arg(1081)->Unit(benchmark::kMicrosecond)
@@ -173,6 +206,7 @@ BENCHMARK(BM_DirectionHypotheses) BEAMS;
 BENCHMARK(BM_LocalFallback) BEAMS;
 BENCHMARK(BM_PairContour) BEAMS;
 BENCHMARK(BM_OdometryStepContour) BEAMS;
+BENCHMARK(BM_OdometryStepCore) BEAMS;
 BENCHMARK(BM_PairContourIcp) BEAMS;
 BENCHMARK(BM_PairIcp) BEAMS;
 BENCHMARK(BM_PairNdt2d) BEAMS;

@@ -34,8 +34,14 @@ bool SegmentationParams::validate(std::string *why) const {
 
 // Eq. (1): C(n) = r(n) cos a(n) + i r(n) sin a(n).
 ComplexSequence polarCode(const LaserScan &scan) {
+  ComplexSequence code;
+  polarCode(scan, code);
+  return code;
+}
+
+void polarCode(const LaserScan &scan, ComplexSequence &code) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  ComplexSequence code(scan.ranges.size());
+  code.resize(scan.ranges.size());
   // The beam direction turns by the same angle from beam to beam: one complex product per
   // beam instead of a sine and a cosine (the rounding this accumulates stays below 1e-12).
   Complex direction = std::polar(1.0, scan.angle_min);
@@ -44,7 +50,6 @@ ComplexSequence polarCode(const LaserScan &scan) {
     const double r = scan.ranges[n];
     code[n] = scan.isValidRange(r) ? r * direction : Complex(nan, nan);
   }
-  return code;
 }
 
 // Eq. (2): y(n) = C(n+1) - C(n).
@@ -65,10 +70,18 @@ double polylineLength(const ComplexSequence &points) {
 std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
                                               const SegmentationParams &params) {
   std::vector<ContourSegment> segments;
-  ContourSegment current;
+  SpareElements<ContourSegment> spare;
+  splitIntoSegments(polar_code, params, segments, spare);
+  return segments;
+}
+
+void splitIntoSegments(const ComplexSequence &polar_code, const SegmentationParams &params,
+                       std::vector<ContourSegment> &segments, SpareElements<ContourSegment> &spare) {
+  spare.clear(segments);
+  ContourSegment *current = nullptr;  // the segment being grown, last in `segments`
   auto close_current = [&]() {
-    if (isLongEnough(current, params)) segments.push_back(std::move(current));
-    current = ContourSegment{};
+    if (current && !isLongEnough(*current, params)) spare.dropLast(segments);
+    current = nullptr;
   };
   for (std::size_t n = 0; n < polar_code.size(); ++n) {
     const Complex &point = polar_code[n];
@@ -76,16 +89,20 @@ std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
       close_current();
       continue;
     }
-    if (!current.points.empty()) {
-      const Complex &previous = current.points.back();
+    if (current) {
+      const Complex &previous = current->points.back();
       const double range = std::min(magnitude(point), magnitude(previous));
       if (magnitude(point - previous) > params.max_gap + params.max_gap_ratio * range) close_current();
     }
-    current.points.push_back(point);
-    current.beam_indices.push_back(static_cast<int>(n));
+    if (!current) {
+      current = &spare.append(segments);
+      current->points.clear();
+      current->beam_indices.clear();
+    }
+    current->points.push_back(point);
+    current->beam_indices.push_back(static_cast<int>(n));
   }
   close_current();
-  return segments;
 }
 
 }  // namespace contour_reg

@@ -10,27 +10,24 @@ bool ContourParams::validate(std::string *why) const {
 }
 
 void ContourFeatures::clear() {
-  segments.clear();
-  contours.clear();
-  responses.clear();
-  special_points.clear();
+  buffers.segments.clear(segments);
+  buffers.contours.clear(contours);
+  buffers.responses.clear(responses);
+  buffers.special_points.clear(special_points);
 }
 
 void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params,
                             ContourFeatures &features) {
-  features.clear();
-  features.segments = splitIntoSegments(polar_code, params.segmentation);             // stage A
-  features.contours = equalizeSegments(features.segments, params.equalization);       // stage B
-  features.responses.reserve(features.contours.size());
+  ContourFeatures::Buffers &buffers = features.buffers;
+  splitIntoSegments(polar_code, params.segmentation, features.segments, buffers.segments);           // stage A
+  equalizeSegments(features.segments, params.equalization, features.contours, buffers.contours);     // stage B
+  buffers.bank.build(params.corner_filter);                                                          // stage C
+  buffers.responses.resize(features.responses, features.contours.size());
+  buffers.special_points.clear(features.special_points);
   for (std::size_t k = 0; k < features.contours.size(); ++k) {
-    const EqualizedContour &contour = features.contours[k];
-    features.responses.push_back(filterCorners(contour, params.corner_filter));      // stage C
-    std::vector<SpecialPoint> found =
-        findSpecialPoints(features.segments[k].points, contour, features.responses.back(),
-                          params.corner_filter, params.special_points);
-    features.special_points.insert(features.special_points.end(),
-                                   std::make_move_iterator(found.begin()),
-                                   std::make_move_iterator(found.end()));
+    filterCorners(features.contours[k], buffers.bank, features.responses[k]);
+    findSpecialPoints(features.segments[k].points, features.contours[k], features.responses[k], params.corner_filter,
+                      params.special_points, features.special_points, buffers.special_points, buffers.arc);
   }
 }
 
@@ -40,13 +37,31 @@ ContourFeatures extractContourFeatures(const ComplexSequence &polar_code, const 
   return features;
 }
 
-ContourFeatures extractContourFeatures(const LaserScan &scan, const ContourParams &params) {
+namespace {
+
+// The segmentation's range limits tightened by the scan's own.
+ContourParams withScanLimits(const LaserScan &scan, const ContourParams &params) {
   ContourParams tightened = params;
   SegmentationParams &seg = tightened.segmentation;
   seg.range_min = std::max(seg.range_min, scan.range_min);
   if (scan.range_max > 0.0) seg.range_max = seg.range_max > 0.0 ? std::min(seg.range_max, scan.range_max)
                                                                 : scan.range_max;
-  return extractContourFeatures(polarCode(scan), tightened);
+  return tightened;
+}
+
+}  // namespace
+
+ContourFeatures extractContourFeatures(const LaserScan &scan, const ContourParams &params) {
+  ContourFeatures features;
+  extractContourFeatures(scan, params, features);
+  return features;
+}
+
+void extractContourFeatures(const LaserScan &scan, const ContourParams &params, ContourFeatures &features) {
+  ComplexSequence code = std::move(features.buffers.polar_code);
+  polarCode(scan, code);
+  extractContourFeatures(code, withScanLimits(scan, params), features);
+  features.buffers.polar_code = std::move(code);
 }
 
 }  // namespace contour_reg

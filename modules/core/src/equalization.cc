@@ -11,16 +11,43 @@ namespace {
 // Resamples the polyline at arc lengths 0, step, ..., count * step (eqs. 4-11:
 // each new vertex ends a piece made of the rest of one raw vector, whole raw
 // vectors, and the used part of the raw vector where the piece ends).
-EqualizedContour resample(const ComplexSequence &points, double step, std::size_t count) {
-  EqualizedContour contour;
+void resample(const ComplexSequence &points, double step, std::size_t count, EqualizedContour &contour) {
   contour.step = step;
-  if (points.size() < 2 || count == 0 || !(step > 0.0)) return contour;
-  const std::vector<double> arc = arcLengths(points);
+  contour.vertices.clear();
+  if (points.size() < 2 || count == 0 || !(step > 0.0)) return;
+  const double total = polylineLength(points);
   contour.vertices.reserve(count + 1);
-  std::size_t hint = 0;
-  for (std::size_t r = 0; r <= count; ++r)
-    contour.vertices.push_back(pointAtArcLength(points, arc, static_cast<double>(r) * step, &hint));
-  return contour;
+  std::size_t n = 0;    // raw vector y(n) = C(n+1) - C(n) the piece ends in
+  double start = 0.0;   // arc length at C(n)
+  double length = magnitude(points[1] - points[0]);
+  for (std::size_t r = 0; r <= count; ++r) {
+    const double s = static_cast<double>(r) * step;
+    if (s >= total) {
+      contour.vertices.push_back(points.back());
+      continue;
+    }
+    while (n + 2 < points.size() && start + length < s) {  // raw vectors passed over whole (eq. 7)
+      start += length;
+      ++n;
+      length = magnitude(points[n + 1] - points[n]);
+    }
+    const double used = length > 0.0 ? (s - start) / length : 0.0;  // used part of the raw vector (eqs. 8-9)
+    contour.vertices.push_back(points[n] + used * (points[n + 1] - points[n]));
+  }
+}
+
+// The element length of every segment: the fixed step, or the paper's total length / p.
+double elementStep(const std::vector<ContourSegment> &segments, const EqualizationParams &params) {
+  if (params.mode == EqualizationMode::kFixedStep) return params.step;
+  double total = 0.0;
+  for (const auto &segment : segments) total += polylineLength(segment.points);
+  return total / std::max(params.count, 1);
+}
+
+// The number of elements of a segment at a fixed step.
+std::size_t elementCountAtStep(const ComplexSequence &points, double step) {
+  // A tiny tolerance keeps a segment whose length is an exact multiple of the step whole.
+  return static_cast<std::size_t>(std::floor(polylineLength(points) / step + 1e-9));
 }
 
 }  // namespace
@@ -34,9 +61,14 @@ bool EqualizationParams::validate(std::string *why) const {
 }
 
 std::vector<double> arcLengths(const ComplexSequence &points) {
-  std::vector<double> arc(points.size(), 0.0);
-  for (std::size_t n = 1; n < points.size(); ++n) arc[n] = arc[n - 1] + magnitude(points[n] - points[n - 1]);
+  std::vector<double> arc;
+  arcLengths(points, arc);
   return arc;
+}
+
+void arcLengths(const ComplexSequence &points, std::vector<double> &arc) {
+  arc.assign(points.size(), 0.0);
+  for (std::size_t n = 1; n < points.size(); ++n) arc[n] = arc[n - 1] + magnitude(points[n] - points[n - 1]);
 }
 
 Complex pointAtArcLength(const ComplexSequence &points, const std::vector<double> &arc, double s,
@@ -56,43 +88,45 @@ Complex pointAtArcLength(const ComplexSequence &points, const std::vector<double
 
 // Eq. (3): e = (1/p) * sum |y(n)|.
 EqualizedContour equalizeByCount(const ComplexSequence &points, int count) {
-  if (count < 1) return {};
+  EqualizedContour contour;
+  if (count < 1) return contour;
   const double length = polylineLength(points);
-  return resample(points, length / count, static_cast<std::size_t>(count));
+  resample(points, length / count, static_cast<std::size_t>(count), contour);
+  return contour;
 }
 
 EqualizedContour equalizeByStep(const ComplexSequence &points, double step) {
-  if (!(step > 0.0)) return {};
-  const double length = polylineLength(points);
-  // A tiny tolerance keeps a segment whose length is an exact multiple of the step whole.
-  const auto count = static_cast<std::size_t>(std::floor(length / step + 1e-9));
-  return resample(points, step, count);
+  EqualizedContour contour;
+  if (!(step > 0.0)) return contour;
+  resample(points, step, elementCountAtStep(points, step), contour);
+  return contour;
 }
 
 std::vector<EqualizedContour> equalizeSegments(const std::vector<ContourSegment> &segments,
                                                const EqualizationParams &params) {
   std::vector<EqualizedContour> contours;
-  contours.reserve(segments.size());
-  double step = params.step;
-  if (params.mode == EqualizationMode::kFixedCount) {
-    double total = 0.0;
-    for (const auto &segment : segments) total += polylineLength(segment.points);
-    step = total / std::max(params.count, 1);
-  }
+  SpareElements<EqualizedContour> spare;
+  equalizeSegments(segments, params, contours, spare);
+  return contours;
+}
+
+void equalizeSegments(const std::vector<ContourSegment> &segments, const EqualizationParams &params,
+                      std::vector<EqualizedContour> &contours, SpareElements<EqualizedContour> &spare) {
+  spare.resize(contours, segments.size());
+  const double step = elementStep(segments, params);
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const ComplexSequence &points = segments[k].points;
-    EqualizedContour contour;
+    EqualizedContour &contour = contours[k];
     if (params.mode == EqualizationMode::kFixedCount) {
+      // Each segment gets a whole number of elements, near its share of the p.
       const double length = polylineLength(points);
-      const int count = std::max(1, static_cast<int>(std::lround(length / step)));
-      contour = equalizeByCount(points, count);
+      const long count = step > 0.0 ? std::max(1L, std::lround(length / step)) : 1L;
+      resample(points, length / static_cast<double>(count), static_cast<std::size_t>(count), contour);
     } else {
-      contour = equalizeByStep(points, step);
+      resample(points, step, step > 0.0 ? elementCountAtStep(points, step) : 0, contour);
     }
     contour.segment = static_cast<int>(k);
-    contours.push_back(std::move(contour));
   }
-  return contours;
 }
 
 }  // namespace contour_reg

@@ -1,30 +1,10 @@
 #include "contour_reg/core/matched_filter.h"
 #include "contour_reg/core/validation.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace contour_reg {
-
-namespace {
-
-struct BankElement {
-  Complex conj_arm2;  // conj of the second arm's unit vector
-  double angle;
-  std::int8_t turn;
-};
-
-std::vector<BankElement> makeBank(const CornerFilterParams &params) {
-  std::vector<BankElement> bank;
-  for (double degrees : params.corner_angles_deg) {
-    const double angle = degrees * M_PI / 180.0;
-    const double tau = M_PI - angle;  // the turn between the arms
-    for (std::int8_t turn : {std::int8_t{1}, std::int8_t{-1}})
-      bank.push_back({std::polar(1.0, -turn * tau), angle, turn});
-  }
-  return bank;
-}
-
-}  // namespace
 
 bool CornerFilterParams::validate(std::string *why) const {
   if (arm_elements < 2) return invalid(why, "corner_filter.arm_elements must be >= 2");
@@ -32,6 +12,16 @@ bool CornerFilterParams::validate(std::string *why) const {
   for (double a : corner_angles_deg)
     if (!(a > 0.0 && a < 180.0)) return invalid(why, "corner_filter.corner_angles_deg must lie in (0, 180)");
   return true;
+}
+
+void CornerBank::build(const CornerFilterParams &params) {
+  elements.clear();
+  arm_elements = params.arm_elements;
+  for (double degrees : params.corner_angles_deg) {
+    const double angle = degrees * M_PI / 180.0;
+    const double tau = M_PI - angle;  // the turn between the arms
+    for (std::int8_t turn : {std::int8_t{1}, std::int8_t{-1}}) elements.push_back({std::polar(1.0, -turn * tau), angle, turn});
+  }
 }
 
 ComplexSequence referenceCorner(int arm_elements, double corner_angle, int turn) {
@@ -55,46 +45,53 @@ double matchedFilterOutput(const ComplexSequence &window, const ComplexSequence 
 }
 
 CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilterParams &params) {
-  const std::size_t vertices = contour.vertices.size();
+  CornerBank bank;
+  bank.build(params);
   CornerResponse out;
+  filterCorners(contour, bank, out);
+  return out;
+}
+
+void filterCorners(const EqualizedContour &contour, const CornerBank &bank, CornerResponse &out) {
+  const std::size_t vertices = contour.vertices.size();
   out.response.assign(vertices, 0.0);
   out.corner_angle.assign(vertices, M_PI);
   out.turn.assign(vertices, 0);
-  const std::size_t s = static_cast<std::size_t>(params.arm_elements);
-  if (vertices < 2 * s + 1) return out;
+  const std::size_t s = static_cast<std::size_t>(bank.arm_elements);
+  if (s == 0 || vertices < 2 * s + 1) return;
 
-  // Prefix sums of |e(r)|^2 give |G(n)| in O(1).
-  std::vector<double> energy(vertices, 0.0);
-  for (std::size_t r = 0; r + 1 < vertices; ++r) energy[r + 1] = energy[r] + squaredMagnitude(contour.element(r));
-
-  const std::vector<BankElement> bank = makeBank(params);
+  // |G(n)|^2, the energy of the window's 2s elements, slides along with the window.
+  double energy = 0.0;
+  for (std::size_t r = 0; r + 1 < 2 * s; ++r) energy += squaredMagnitude(contour.element(r));
   const double norm_t = std::sqrt(2.0 * static_cast<double>(s));  // |T|: 2s unit vectors
   for (std::size_t n = s; n + s < vertices; ++n) {
+    energy += squaredMagnitude(contour.element(n + s - 1));      // enters the window
+    if (n > s) energy -= squaredMagnitude(contour.element(n - s - 1));  // leaves it
     const Complex arm1 = contour.vertices[n] - contour.vertices[n - s];  // sum of the first arm's vectors
     const Complex arm2 = contour.vertices[n + s] - contour.vertices[n];  // sum of the second arm's vectors
-    const double norm_g = std::sqrt(energy[n + s] - energy[n - s]);
+    const double norm_g = std::sqrt(std::max(0.0, energy));
     if (norm_g <= 0.0) continue;
     const double scale = 1.0 / (norm_g * norm_t);
     const double eta_line = magnitude(arm1 + arm2) * scale;  // eq. (13): straight-line output
     // The best bank element has the largest |arm1 + conj(arm2 reference) arm2|: found on the
     // squares, one square root per vertex.
     double best_square = -1.0;
-    const BankElement *best_element = nullptr;
-    for (const BankElement &element : bank) {
+    const CornerBank::Element *best_element = nullptr;
+    for (const CornerBank::Element &element : bank.elements) {
       const double square = squaredMagnitude(arm1 + element.conj_arm2 * arm2);
       if (square > best_square) {
         best_square = square;
         best_element = &element;
       }
     }
+    if (best_element == nullptr) continue;
     const double eta_corner = std::sqrt(best_square) * scale;  // eq. (12)
     const double best = eta_corner - eta_line;
-    if (best_element == nullptr || best <= 0.0) continue;
+    if (best <= 0.0) continue;
     out.corner_angle[n] = best_element->angle;
     out.turn[n] = best_element->turn;
     out.response[n] = best;
   }
-  return out;
 }
 
 }  // namespace contour_reg

@@ -91,14 +91,13 @@ bool isLocalMaximum(const std::vector<double> &c, std::size_t n, int radius) {
   return true;
 }
 
-ComplexSequence fragmentAround(const EqualizedContour &contour, int vertex, int half_length) {
-  ComplexSequence fragment(2 * static_cast<std::size_t>(half_length), Complex(0.0, 0.0));
+void fragmentAround(const EqualizedContour &contour, int vertex, int half_length, ComplexSequence &fragment) {
+  fragment.assign(2 * static_cast<std::size_t>(half_length), Complex(0.0, 0.0));
   const int elements = static_cast<int>(contour.elementCount());
   for (int m = 0; m < 2 * half_length; ++m) {
     const int r = vertex - half_length + m;
     if (r >= 0 && r < elements) fragment[m] = contour.element(r);
   }
-  return fragment;
 }
 
 }  // namespace
@@ -118,18 +117,29 @@ std::vector<SpecialPoint> findSpecialPoints(const ComplexSequence &raw_points,
                                             const CornerFilterParams &filter,
                                             const SpecialPointParams &params) {
   std::vector<SpecialPoint> points;
+  SpareElements<SpecialPoint> spare;
+  std::vector<double> arc;
+  findSpecialPoints(raw_points, contour, response, filter, params, points, spare, arc);
+  return points;
+}
+
+void findSpecialPoints(const ComplexSequence &raw_points, const EqualizedContour &contour,
+                       const CornerResponse &response, const CornerFilterParams &filter,
+                       const SpecialPointParams &params, std::vector<SpecialPoint> &points,
+                       SpareElements<SpecialPoint> &spare, std::vector<double> &arc) {
   const std::vector<double> &c = response.response;
-  if (c.size() < 3 || raw_points.size() < 2) return points;
+  if (c.size() < 3 || raw_points.size() < 2) return;
   const int s = filter.arm_elements;
   const int radius = params.suppression_radius > 0 ? params.suppression_radius : s;
   const double step = contour.step;
-  std::vector<double> arc;  // computed on the first special point only
+  bool have_arc = false;  // the arc lengths are computed on the first special point only
 
   for (std::size_t n = 1; n + 1 < c.size(); ++n) {
     if (c[n] < params.threshold || !isLocalMaximum(c, n, radius)) continue;
-    if (arc.empty()) arc = arcLengths(raw_points);
+    if (!have_arc) arcLengths(raw_points, arc);
+    have_arc = true;
 
-    SpecialPoint point;
+    SpecialPoint &point = spare.append(points);
     point.response = c[n];
     point.turn = response.turn[n];
     point.contour = contour.segment;
@@ -159,10 +169,8 @@ std::vector<SpecialPoint> findSpecialPoints(const ComplexSequence &raw_points,
     const Complex back = -arm1.direction, ahead = arm2.direction;
     point.corner_angle = std::acos(std::clamp((back * std::conj(ahead)).real(), -1.0, 1.0));
     point.orientation = std::arg(back + ahead);
-    point.fragment = fragmentAround(contour, point.vertex, params.fragment_half_length);
-    points.push_back(std::move(point));
+    fragmentAround(contour, point.vertex, params.fragment_half_length, point.fragment);
   }
-  return points;
 }
 
 }  // namespace contour_reg

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "contour_reg/core/laser_scan.h"
+#include "contour_reg/core/spare_elements.h"
 #include "contour_reg/core/types.h"
 
 namespace contour_reg {
@@ -40,6 +41,9 @@ struct ContourSegment {
 /// Polar code of a scan, eq. (1). Invalid beams give NaN points, so beam indices stay aligned.
 ComplexSequence polarCode(const LaserScan &scan);
 
+/// The same into `code`, reusing its buffer.
+void polarCode(const LaserScan &scan, ComplexSequence &code);
+
 /// Differential code of a point sequence, eq. (2): y(n) = C(n+1) - C(n).
 ComplexSequence differentialCode(const ComplexSequence &points);
 
@@ -50,5 +54,9 @@ double polylineLength(const ComplexSequence &points);
 /// into segments at invalid points and range jumps, and drops short segments.
 std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
                                               const SegmentationParams &params);
+
+/// The same into `segments`, whose elements' buffers (and those kept in `spare`) are reused.
+void splitIntoSegments(const ComplexSequence &polar_code, const SegmentationParams &params,
+                       std::vector<ContourSegment> &segments, SpareElements<ContourSegment> &spare);
 
 }  // namespace contour_reg

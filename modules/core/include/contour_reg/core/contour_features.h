@@ -32,6 +32,20 @@ struct ContourFeatures {
   std::vector<CornerResponse> responses;    ///< stage C, one per contour
   std::vector<SpecialPoint> special_points; ///< stage C, all contours
 
+  /// Buffers kept between scans: extracting a scan's features into an object that held an
+  /// earlier scan's reuses them, and allocates nothing once they have grown large enough
+  /// (odometry alternates two such objects).
+  struct Buffers {
+    SpareElements<ContourSegment> segments;
+    SpareElements<EqualizedContour> contours;
+    SpareElements<CornerResponse> responses;
+    SpareElements<SpecialPoint> special_points;
+    CornerBank bank;
+    std::vector<double> arc;
+    ComplexSequence polar_code;
+  } buffers;
+
+  /// Empties the features, keeping their buffers.
   void clear();
 };
 
@@ -45,5 +59,8 @@ ContourFeatures extractContourFeatures(const ComplexSequence &polar_code, const 
 
 /// Runs stages A-C on a LaserScan; the scan's own range limits tighten the segmentation's.
 ContourFeatures extractContourFeatures(const LaserScan &scan, const ContourParams &params);
+
+/// The same into `features`, reusing its buffers.
+void extractContourFeatures(const LaserScan &scan, const ContourParams &params, ContourFeatures &features);
 
 }  // namespace contour_reg

@@ -47,6 +47,9 @@ struct EqualizedContour {
 /// Cumulative arc length at each point of a polyline (0 at the first point).
 std::vector<double> arcLengths(const ComplexSequence &points);
 
+/// The same into `arc`, reusing its buffer.
+void arcLengths(const ComplexSequence &points, std::vector<double> &arc);
+
 /// Point at arc length s along the polyline (clamped to its ends).
 /// `arc` must be arcLengths(points); `hint` speeds up increasing queries.
 Complex pointAtArcLength(const ComplexSequence &points, const std::vector<double> &arc, double s,
@@ -64,5 +67,9 @@ EqualizedContour equalizeByStep(const ComplexSequence &points, double step);
 /// elements (at least one), so a scan of one segment gets exactly p.
 std::vector<EqualizedContour> equalizeSegments(const std::vector<ContourSegment> &segments,
                                                const EqualizationParams &params);
+
+/// The same into `contours`, whose elements' buffers (and those kept in `spare`) are reused.
+void equalizeSegments(const std::vector<ContourSegment> &segments, const EqualizationParams &params,
+                      std::vector<EqualizedContour> &contours, SpareElements<EqualizedContour> &spare);
 
 }  // namespace contour_reg

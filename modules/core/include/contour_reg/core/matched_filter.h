@@ -46,6 +46,24 @@ struct CornerResponse {
 /// Runs the bank of corner filters along one equalized contour.
 CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilterParams &params);
 
+/// The bank of reference corners, prepared once for the contours of a scan: per bank element,
+/// the conjugate of its second arm's unit vector, conj(t2).
+struct CornerBank {
+  struct Element {
+    Complex conj_arm2;
+    double angle;       ///< rad, the corner angle dphi
+    std::int8_t turn;   ///< +1 left, -1 right
+  };
+  std::vector<Element> elements;
+  int arm_elements = 0;  ///< s
+
+  /// Fills the bank for `params`, reusing its buffer.
+  void build(const CornerFilterParams &params);
+};
+
+/// The same as filterCorners with a prepared bank, into `out`, reusing its buffers.
+void filterCorners(const EqualizedContour &contour, const CornerBank &bank, CornerResponse &out);
+
 /// Normalized output of one reference form T on one window G, eq. (12): |(G,T)| / (|G||T|).
 /// Exposed for tests and for other reference forms.
 double matchedFilterOutput(const ComplexSequence &window, const ComplexSequence &reference);

@@ -51,4 +51,11 @@ std::vector<SpecialPoint> findSpecialPoints(const ComplexSequence &raw_points,
                                             const CornerFilterParams &filter,
                                             const SpecialPointParams &params);
 
+/// The same, appended to `points`, reusing the elements kept in `spare` and `arc` (the raw
+/// points' arc lengths) as buffers.
+void findSpecialPoints(const ComplexSequence &raw_points, const EqualizedContour &contour,
+                       const CornerResponse &response, const CornerFilterParams &filter,
+                       const SpecialPointParams &params, std::vector<SpecialPoint> &points,
+                       SpareElements<SpecialPoint> &spare, std::vector<double> &arc);
+
 }  // namespace contour_reg
