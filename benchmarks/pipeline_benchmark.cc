@@ -75,7 +75,9 @@ void BM_Correspondence(benchmark::State &state) {  // stage D (eq. 14)
   const ScanPair pair = scanPair(int(state.range(0)));
   const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
   const CorrespondenceParams params;
+  const std::size_t allocations = allocationCount();
   for (auto _ : state) benchmark::DoNotOptimize(findCorrespondences(b.special_points, a.special_points, params));
+  state.counters["allocations"] = double(allocationCount() - allocations) / double(state.iterations());
 }
 
 void BM_RansacAndRefinement(benchmark::State &state) {  // stages D-F + refinement, features given
@@ -84,10 +86,12 @@ void BM_RansacAndRefinement(benchmark::State &state) {  // stages D-F + refineme
   RegistrationParams params;
   params.refinement.enabled = state.range(1) != 0;
   std::mt19937 rng;
+  const std::size_t allocations = allocationCount();
   for (auto _ : state) {
     rng.seed(42);
     benchmark::DoNotOptimize(registerContours(b, a, params, rng));
   }
+  state.counters["allocations"] = double(allocationCount() - allocations) / double(state.iterations());
 }
 
 void BM_DirectionHypotheses(benchmark::State &state) {  // the fallback's corner-free motion hypotheses
@@ -179,6 +183,7 @@ void BM_OdometryStepCore(benchmark::State &state) {
   const RegistrationParams params;
   std::mt19937 rng;
   RegistrationResult result;
+  RegistrationBuffers buffers;
   extractContourFeatures(codes[0], kParams, features[0]);
   std::size_t k = 0, allocations = 0;
   for (auto _ : state) {
@@ -186,7 +191,7 @@ void BM_OdometryStepCore(benchmark::State &state) {
     ContourFeatures &target = features[k % 2], &source = features[(k + 1) % 2];
     extractContourFeatures(codes[(k + 1) % 2], kParams, source);
     rng.seed(42);
-    result = registerContours(source, target, params, rng);
+    registerContours(source, target, params, rng, nullptr, buffers, result);
     benchmark::DoNotOptimize(result.transform.data());
     if (k >= 2) allocations += allocationCount() - before;  // the first two steps size the buffers
     ++k;

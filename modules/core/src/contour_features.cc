@@ -1,6 +1,7 @@
 #include "contour_reg/core/contour_features.h"
 
 #include <algorithm>
+#include <atomic>
 
 namespace contour_reg {
 
@@ -14,10 +15,13 @@ void ContourFeatures::clear() {
   buffers.contours.clear(contours);
   buffers.responses.clear(responses);
   buffers.special_points.clear(special_points);
+  extraction = 0;
 }
 
 void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params,
                             ContourFeatures &features) {
+  static std::atomic<std::uint64_t> extractions{0};
+  features.extraction = ++extractions;
   ContourFeatures::Buffers &buffers = features.buffers;
   splitIntoSegments(polar_code, params.segmentation, features.segments, buffers.segments);           // stage A
   equalizeSegments(features.segments, params.equalization, features.contours, buffers.contours);     // stage B

@@ -27,20 +27,10 @@ void descriptor(const SpecialPoint &p, FragmentDistance form, float *out) {
   }
 }
 
-// Candidate target indices for each source point: every target (small sets) or the
-// nearest fragments from a kd-tree (large sets).
-std::vector<std::vector<int>> candidateTargets(const std::vector<SpecialPoint> &source,
-                                               const std::vector<SpecialPoint> &target,
-                                               const CorrespondenceParams &params) {
-  std::vector<std::vector<int>> candidates(source.size());
-  const bool use_tree = source.size() >= params.kdtree_min_points && target.size() >= params.kdtree_min_points;
-  if (!use_tree) {
-    for (auto &list : candidates) {
-      list.resize(target.size());
-      for (std::size_t t = 0; t < target.size(); ++t) list[t] = static_cast<int>(t);
-    }
-    return candidates;
-  }
+// The nearest fragments' target indices for each source point, `k` per point in a row-major
+// matrix, from a kd-tree over the targets' descriptors.
+std::vector<int> nearestTargets(const std::vector<SpecialPoint> &source, const std::vector<SpecialPoint> &target,
+                                const CorrespondenceParams &params, std::size_t k) {
   const std::size_t dims = 2 * target.front().fragment.size();
   std::vector<float> data(target.size() * dims), query(source.size() * dims);
   for (std::size_t t = 0; t < target.size(); ++t) descriptor(target[t], params.distance, &data[t * dims]);
@@ -48,15 +38,13 @@ std::vector<std::vector<int>> candidateTargets(const std::vector<SpecialPoint> &
   flann::Index<flann::L2<float>> index(flann::Matrix<float>(data.data(), target.size(), dims),
                                        flann::KDTreeSingleIndexParams(10));
   index.buildIndex();
-  const std::size_t k = std::min<std::size_t>(target.size(), 4 * static_cast<std::size_t>(params.candidates_per_point) + 4);
   std::vector<int> indices(source.size() * k);
   std::vector<float> distances(source.size() * k);
   flann::Matrix<int> index_matrix(indices.data(), source.size(), k);
   flann::Matrix<float> distance_matrix(distances.data(), source.size(), k);
   index.knnSearch(flann::Matrix<float>(query.data(), source.size(), dims), index_matrix, distance_matrix, k,
                   flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
-  for (std::size_t s = 0; s < source.size(); ++s) candidates[s].assign(&indices[s * k], &indices[s * k] + k);
-  return candidates;
+  return indices;
 }
 
 }  // namespace
@@ -87,15 +75,32 @@ std::vector<Correspondence> findCorrespondences(const std::vector<SpecialPoint> 
                                                 const std::vector<SpecialPoint> &target,
                                                 const CorrespondenceParams &params) {
   std::vector<Correspondence> pairs;
-  if (source.empty() || target.empty()) return pairs;
-  const auto candidates = candidateTargets(source, target, params);
-  const bool one_to_one = params.candidates_per_point == 1;
-  std::vector<Correspondence> best_for_target(target.size(), Correspondence{-1, -1, std::numeric_limits<double>::infinity(), 0.0});
+  CorrespondenceScratch scratch;
+  findCorrespondences(source, target, params, pairs, scratch);
+  return pairs;
+}
 
-  std::vector<Correspondence> ranked;
+void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vector<SpecialPoint> &target,
+                         const CorrespondenceParams &params, std::vector<Correspondence> &pairs,
+                         CorrespondenceScratch &scratch) {
+  pairs.clear();
+  if (source.empty() || target.empty()) return;
+  // Candidate targets of each source point: every target (small sets) or the nearest
+  // fragments from a kd-tree (large sets).
+  const bool use_tree = source.size() >= params.kdtree_min_points && target.size() >= params.kdtree_min_points;
+  const std::size_t per_source =
+      use_tree ? std::min<std::size_t>(target.size(), 4 * static_cast<std::size_t>(params.candidates_per_point) + 4)
+               : target.size();
+  const std::vector<int> nearest = use_tree ? nearestTargets(source, target, params, per_source) : std::vector<int>{};
+  const bool one_to_one = params.candidates_per_point == 1;
+  std::vector<Correspondence> &best_for_target = scratch.best_for_target;
+  best_for_target.assign(target.size(), Correspondence{-1, -1, std::numeric_limits<double>::infinity(), 0.0});
+
+  std::vector<Correspondence> &ranked = scratch.ranked;
   for (std::size_t s = 0; s < source.size(); ++s) {
     ranked.clear();
-    for (int t : candidates[s]) {
+    for (std::size_t j = 0; j < per_source; ++j) {
+      const int t = use_tree ? nearest[s * per_source + j] : static_cast<int>(j);
       if (!compatible(source[s], target[t], params)) continue;
       double rotation = 0.0;
       const double r2 = fragmentDistanceSquared(source[s].fragment, target[t].fragment, params.distance, &rotation);
@@ -121,7 +126,6 @@ std::vector<Correspondence> findCorrespondences(const std::vector<SpecialPoint> 
   if (one_to_one)  // mutual best: the target's best source must be this source
     for (const Correspondence &c : best_for_target)
       if (c.source >= 0) pairs.push_back(c);
-  return pairs;
 }
 
 }  // namespace contour_reg

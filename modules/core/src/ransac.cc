@@ -29,20 +29,30 @@ bool fit(const RansacParams &params, const Points2D &source, const Points2D &tar
          std::abs(scales(1) - 1.0) <= params.max_affine_distortion;
 }
 
-// Inliers of `transform` (|H p - q| < t) and the sum of their squared errors.
-std::vector<int> inliersOf(const Eigen::Matrix3d &transform, const Points2D &source, const Points2D &target,
-                           double threshold, double &squared_error) {
-  std::vector<int> inliers;
+// How many pairs `transform` takes within t of their target (|H p - q| < t), and the sum of
+// their squared errors.
+std::size_t countInliers(const Eigen::Matrix3d &transform, const Points2D &source, const Points2D &target,
+                         double threshold, double &squared_error) {
+  std::size_t count = 0;
   squared_error = 0.0;
   const double t2 = threshold * threshold;
   for (std::size_t i = 0; i < source.size(); ++i) {
     const double e2 = (apply(transform, source[i]) - target[i]).squaredNorm();
     if (e2 < t2) {
-      inliers.push_back(static_cast<int>(i));
+      ++count;
       squared_error += e2;
     }
   }
-  return inliers;
+  return count;
+}
+
+// The inliers themselves, into `inliers`.
+void listInliers(const Eigen::Matrix3d &transform, const Points2D &source, const Points2D &target, double threshold,
+                 std::vector<int> &inliers) {
+  inliers.clear();
+  const double t2 = threshold * threshold;
+  for (std::size_t i = 0; i < source.size(); ++i)
+    if ((apply(transform, source[i]) - target[i]).squaredNorm() < t2) inliers.push_back(static_cast<int>(i));
 }
 
 // Draws `size` distinct indices below n.
@@ -79,16 +89,31 @@ bool sameMotion(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
 RansacResult ransac(const Points2D &source, const Points2D &target, const std::vector<double> &pair_rotations,
                     const RansacParams &params, std::mt19937 &rng) {
   RansacResult result;
+  RansacScratch scratch;
+  ransac(source, target, pair_rotations, params, rng, result, scratch);
+  return result;
+}
+
+void ransac(const Points2D &source, const Points2D &target, const std::vector<double> &pair_rotations,
+            const RansacParams &params, std::mt19937 &rng, RansacResult &result, RansacScratch &scratch) {
+  result.found = false;
+  result.transform.setIdentity();
+  result.inliers.clear();
+  result.rmse = 0.0;
+  result.iterations = 0;
+  result.rivals.clear();
   const std::size_t sample_size = params.model == TransformModel::kRigid ? 2 : 3;
   const std::size_t n = source.size();
-  if (n < sample_size || target.size() != n) return result;
+  if (n < sample_size || target.size() != n) return;
   const bool check_rotations = pair_rotations.size() == n && params.max_rotation_disagreement > 0.0;
 
   std::size_t best_count = 0;
   double best_error = std::numeric_limits<double>::infinity();
   double needed_iterations = params.max_iterations;
-  std::vector<int> sample;
-  Points2D sample_source(sample_size), sample_target(sample_size);
+  std::vector<int> &sample = scratch.sample;
+  Points2D &sample_source = scratch.sample_source, &sample_target = scratch.sample_target;
+  sample_source.resize(sample_size);
+  sample_target.resize(sample_size);
   for (int iteration = 0; iteration < params.max_iterations && iteration < needed_iterations; ++iteration) {
     result.iterations = iteration + 1;
     drawSample(n, sample_size, rng, sample);  // step 2: a "trial" set of pairs
@@ -105,24 +130,23 @@ RansacResult ransac(const Points2D &source, const Points2D &target, const std::v
       if (!agree) continue;
     }
     double error = 0.0;
-    const std::vector<int> inliers = inliersOf(hypothesis, source, target, params.inlier_threshold, error);  // step 4
-    if (result.found && inliers.size() == best_count && !sameMotion(hypothesis, result.transform)) {
+    const std::size_t inliers = countInliers(hypothesis, source, target, params.inlier_threshold, error);  // step 4
+    if (result.found && inliers == best_count && !sameMotion(hypothesis, result.transform)) {
       const bool known = std::any_of(result.rivals.begin(), result.rivals.end(),
                                      [&](const Eigen::Matrix3d &r) { return sameMotion(r, hypothesis); });
       if (!known && result.rivals.size() < kMaxRivals) result.rivals.push_back(hypothesis);
     }
-    if (inliers.size() > best_count || (inliers.size() == best_count && error < best_error)) {  // step 5
-      if (inliers.size() > best_count) result.rivals.clear();
+    if (inliers > best_count || (inliers == best_count && error < best_error)) {  // step 5
+      if (inliers > best_count) result.rivals.clear();
       else if (result.found && !sameMotion(hypothesis, result.transform)) {
         result.rivals.erase(std::remove_if(result.rivals.begin(), result.rivals.end(),
                                            [&](const Eigen::Matrix3d &r) { return sameMotion(r, hypothesis); }),
                             result.rivals.end());
         result.rivals.push_back(result.transform);
       }
-      best_count = inliers.size();
+      best_count = inliers;
       best_error = error;
       result.transform = hypothesis;
-      result.inliers = inliers;
       result.found = true;
       const double ratio = static_cast<double>(best_count) / static_cast<double>(n);
       const double p_good = std::pow(ratio, static_cast<double>(sample_size));
@@ -130,11 +154,14 @@ RansacResult ransac(const Points2D &source, const Points2D &target, const std::v
       needed_iterations = std::log(1.0 - params.confidence) / std::log(1.0 - std::max(p_good, 1e-12));
     }
   }
-  if (!result.found) return result;
+  if (!result.found) return;
 
   // Refit on all inliers, recount, and keep the refit when it does not lose inliers.
+  listInliers(result.transform, source, target, params.inlier_threshold, result.inliers);
+  Points2D &in_source = scratch.inlier_source, &in_target = scratch.inlier_target;
   for (int round = 0; round < 2; ++round) {
-    Points2D in_source, in_target;
+    in_source.clear();
+    in_target.clear();
     for (int i : result.inliers) {
       in_source.push_back(source[i]);
       in_target.push_back(target[i]);
@@ -142,15 +169,13 @@ RansacResult ransac(const Points2D &source, const Points2D &target, const std::v
     Eigen::Matrix3d refit;
     if (!fit(params, in_source, in_target, refit)) break;
     double error = 0.0;
-    std::vector<int> inliers = inliersOf(refit, source, target, params.inlier_threshold, error);
-    if (inliers.size() < result.inliers.size()) break;
+    if (countInliers(refit, source, target, params.inlier_threshold, error) < result.inliers.size()) break;
     result.transform = refit;
-    result.inliers = std::move(inliers);
+    listInliers(result.transform, source, target, params.inlier_threshold, result.inliers);
   }
   double error = 0.0;
-  result.inliers = inliersOf(result.transform, source, target, params.inlier_threshold, error);
+  countInliers(result.transform, source, target, params.inlier_threshold, error);
   result.rmse = result.inliers.empty() ? 0.0 : std::sqrt(error / static_cast<double>(result.inliers.size()));
-  return result;
 }
 
 }  // namespace contour_reg

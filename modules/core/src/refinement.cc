@@ -18,13 +18,18 @@ struct BearingIndex {
   std::vector<Eigen::Vector2d> points;
   std::vector<int> segment;
   std::vector<double> bearing;
+  std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (segment, point): kept for the next build
 
-  explicit BearingIndex(const ContourFeatures &target) {
-    std::vector<std::pair<double, std::pair<int, int>>> order;
+  // Indexes `target`, reusing the buffers of the last build.
+  void build(const ContourFeatures &target) {
+    order.clear();
     for (std::size_t k = 0; k < target.segments.size(); ++k)
       for (std::size_t n = 0; n < target.segments[k].points.size(); ++n)
         order.push_back({std::arg(target.segments[k].points[n]), {int(k), int(n)}});
     std::sort(order.begin(), order.end());
+    points.clear();
+    segment.clear();
+    bearing.clear();
     for (const auto &[b, where] : order) {
       points.push_back(toEigen(target.segments[where.first].points[where.second]));
       segment.push_back(where.first);
@@ -74,12 +79,17 @@ struct BearingIndex {
 
 std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, double sample_step) {
   std::vector<Eigen::Vector2d> samples;
+  contourSamples(source, sample_step, samples);
+  return samples;
+}
+
+void contourSamples(const ContourFeatures &source, double sample_step, std::vector<Eigen::Vector2d> &samples) {
+  samples.clear();
   for (const EqualizedContour &contour : source.contours) {
     if (contour.vertices.empty() || contour.step <= 0.0) continue;
     const auto stride = static_cast<std::size_t>(std::max(1.0, std::round(sample_step / contour.step)));
     for (std::size_t r = 0; r < contour.vertices.size(); r += stride) samples.push_back(toEigen(contour.vertices[r]));
   }
-  return samples;
 }
 
 bool RefinementParams::validate(std::string *why) const {
@@ -93,11 +103,16 @@ bool RefinementParams::validate(std::string *why) const {
 
 struct ContourRefiner::Index {
   BearingIndex bearing;
-  explicit Index(const ContourFeatures &target) : bearing(target) {}
 };
 
+ContourRefiner::ContourRefiner() : index_(std::make_unique<Index>()) {}
+
 ContourRefiner::ContourRefiner(const ContourFeatures &target, const RefinementParams &params)
-    : index_(std::make_unique<Index>(target)), params_(params) {}
+    : index_(std::make_unique<Index>()), params_(params) {
+  setTarget(target);
+}
+
+void ContourRefiner::setTarget(const ContourFeatures &target) { index_->bearing.build(target); }
 
 ContourRefiner::~ContourRefiner() = default;
 

@@ -8,11 +8,10 @@ namespace contour_reg {
 
 namespace {
 
-RegistrationResult &fail(RegistrationResult &result, RegistrationStatus status, std::string reason) {
+void fail(RegistrationResult &result, RegistrationStatus status, const std::string &reason) {
   result.converged = false;
   result.status = status;
-  result.reason = std::move(reason);
-  return result;
+  result.reason = reason;
 }
 
 // Pairs consistent with the guess: target near the guessed source position, rotation near its yaw.
@@ -69,12 +68,6 @@ const char *toString(RegistrationStatus status) {
 
 namespace {
 
-// A starting motion for the contour refinement, and the refinement settings to use from it.
-struct RefinementStart {
-  Eigen::Matrix3d motion;
-  const RefinementParams *params;
-};
-
 // The best of several starting motions refined on the contours, and whether a distinct
 // motion fits about as well (the scans cannot tell them apart).
 struct BestRefinement {
@@ -85,20 +78,32 @@ struct BestRefinement {
 // The best overlap wins; where overlaps tie, the motion nearest the guess (no motion
 // without one) wins. Many starts are first screened by a short, sparse refinement; the
 // most promising few are refined in full.
+// The refiner of `buffers`, indexing `target` (rebuilt only for a different extraction).
+const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuffers &buffers) {
+  if (target.extraction == 0 || buffers.indexed_target != target.extraction) {
+    buffers.refiner.setTarget(target);
+    buffers.indexed_target = target.extraction;
+  }
+  return buffers.refiner;
+}
+
 BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &target,
-                          std::vector<RefinementStart> starts, const Eigen::Matrix3d *guess) {
+                          std::vector<RefinementStart> &starts, const Eigen::Matrix3d *guess,
+                          RegistrationBuffers &buffers) {
   auto distance = [](const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {  // m, with 1 m per rad of turn
     return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
            std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
   };
-  const ContourRefiner refiner(target, *starts.front().params);
+  const ContourRefiner &refiner = refinerFor(target, buffers);
   // The starts share their sample spacing: the source is sampled once for the full
   // refinements and once, twice as sparse, for the screening.
   const double step = starts.front().params->sample_step;
-  const std::vector<Eigen::Vector2d> samples = contourSamples(source, step);
+  std::vector<Eigen::Vector2d> &samples = buffers.samples;
+  contourSamples(source, step, samples);
   constexpr std::size_t kRefinedInFull = 3;
   if (starts.size() > kRefinedInFull) {
-    const std::vector<Eigen::Vector2d> sparse = contourSamples(source, 2.0 * step);
+    std::vector<Eigen::Vector2d> &sparse = buffers.sparse_samples;
+    contourSamples(source, 2.0 * step, sparse);
     struct Screened {
       double overlap;
       std::size_t start;
@@ -123,7 +128,8 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
     for (const Screened *c : chosen) kept.push_back(starts[c->start]);
     starts = kept;
   }
-  std::vector<RefinementResult> refined;
+  std::vector<RefinementResult> &refined = buffers.refined;
+  refined.clear();
   for (const RefinementStart &start : starts) refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
   constexpr double kOverlapTie = 0.05;
@@ -141,9 +147,24 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
   return result;
 }
 
-RegistrationResult registerByCorners(const ContourFeatures &source, const ContourFeatures &target,
-                                     const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess) {
-  RegistrationResult result;
+// Empties `result`, keeping the buffers of its lists.
+void reset(RegistrationResult &result) {
+  std::vector<Correspondence> candidates = std::move(result.candidates);
+  std::vector<int> inliers = std::move(result.inliers);
+  std::string reason = std::move(result.reason);
+  result = RegistrationResult{};
+  candidates.clear();
+  inliers.clear();
+  reason.clear();
+  result.candidates = std::move(candidates);
+  result.inliers = std::move(inliers);
+  result.reason = std::move(reason);
+}
+
+void registerByCorners(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
+                       std::mt19937 &rng, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
+                       RegistrationResult &result) {
+  reset(result);
   if (guess) result.transform = *guess;
   std::string why;
   if (!params.validate(&why)) return fail(result, RegistrationStatus::kInvalidParameters, why);
@@ -163,9 +184,9 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
     const Complex rotation = std::polar(1.0, yawOf(*guess));
     for (SpecialPoint &point : turned)
       for (Complex &v : point.fragment) v *= rotation;
-    result.candidates = findCorrespondences(turned, dst, params.correspondence);
+    findCorrespondences(turned, dst, params.correspondence, result.candidates, buffers.correspondence);
   } else {
-    result.candidates = findCorrespondences(src, dst, params.correspondence);
+    findCorrespondences(src, dst, params.correspondence, result.candidates, buffers.correspondence);
   }
   if (guess && params.guess_max_distance > 0.0)
     result.candidates = gateByGuess(result.candidates, src, dst, *guess, params, invariant);
@@ -175,19 +196,24 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
                 "too few candidate pairs: " + std::to_string(result.candidates.size()));
 
   // Stages E-F: RANSAC over the pairs.
-  Points2D p, q;
-  std::vector<double> rotations;
+  Points2D &p = buffers.pair_sources, &q = buffers.pair_targets;
+  std::vector<double> &rotations = buffers.pair_rotations;
+  p.clear();
+  q.clear();
+  rotations.clear();
   for (const Correspondence &c : result.candidates) {
     p.push_back(src[c.source].position);
     q.push_back(dst[c.target].position);
     rotations.push_back(c.rotation);
   }
-  const RansacResult found = ransac(p, q, rotations, params.ransac, rng);
+  RansacResult &found = buffers.ransac_result;
+  ransac(p, q, rotations, params.ransac, rng, found, buffers.ransac);
   result.ransac_iterations = found.iterations;
-  result.inliers = found.inliers;
+  result.inliers.assign(found.inliers.begin(), found.inliers.end());
   result.inlier_rmse = found.rmse;
   // Count distinct special points: one corner paired twice is no extra support.
-  Points2D inlier_sources;
+  Points2D &inlier_sources = buffers.inlier_sources;
+  inlier_sources.clear();
   for (int i : found.inliers)
     if (std::none_of(inlier_sources.begin(), inlier_sources.end(), [&](const Eigen::Vector2d &x) { return (x - p[i]).norm() < 1e-9; }))
       inlier_sources.push_back(p[i]);
@@ -222,9 +248,10 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
   if (params.refinement.enabled) {
     // RANSAC may end with rival motions as well supported as its best (a symmetric room
     // seen from two corners matched crosswise): each is refined, and the contours decide.
-    std::vector<RefinementStart> starts{{coarse, &params.refinement}};
+    std::vector<RefinementStart> &starts = buffers.starts;
+    starts.assign(1, {coarse, &params.refinement});
     for (const Eigen::Matrix3d &rival : found.rivals) starts.push_back({rival, &params.refinement});
-    const RefinementResult refined = refineBest(source, target, starts, guess).best;
+    const RefinementResult refined = refineBest(source, target, starts, guess, buffers).best;
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
     result.covariance = refined.covariance;
@@ -241,14 +268,13 @@ RegistrationResult registerByCorners(const ContourFeatures &source, const Contou
   result.converged = true;
   result.status = RegistrationStatus::kConverged;
   result.reason.clear();
-  return result;
 }
 
 // Few corners: the guess, a motion one pair of corners implies, or a motion the contours'
 // directions suggest, refined on the contours and kept when well supported and unambiguous.
 constexpr std::size_t kMaxPairHypotheses = 8;
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
-                      const Eigen::Matrix3d *guess, RegistrationResult &result) {
+                      const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, RegistrationResult &result) {
   // The guess may be far off: it is refined from a wider pairing distance.
   RefinementParams wide = params.refinement;
   wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
@@ -271,7 +297,7 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
     for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, params.direction_histogram, guess))
       starts.push_back({motion, &params.refinement});
 
-  const BestRefinement found = refineBest(source, target, starts, guess);
+  BestRefinement found = refineBest(source, target, starts, guess, buffers);
   const RefinementResult &refined = found.best;
   if (refined.overlap < params.local_fallback_min_overlap) {
     result.reason += "; refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
@@ -302,14 +328,30 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
 
 RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
                                     const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess) {
-  RegistrationResult result = registerByCorners(source, target, params, rng, guess);
+  RegistrationBuffers buffers;
+  RegistrationResult result;
+  registerContours(source, target, params, rng, guess, buffers, result);
+  return result;
+}
+
+RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
+                                    const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess,
+                                    RegistrationBuffers &buffers) {
+  RegistrationResult result;
+  registerContours(source, target, params, rng, guess, buffers, result);
+  return result;
+}
+
+void registerContours(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
+                      std::mt19937 &rng, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
+                      RegistrationResult &result) {
+  registerByCorners(source, target, params, rng, guess, buffers, result);
   const bool corners_undecided = result.status == RegistrationStatus::kTooFewSpecialPoints ||
                                  result.status == RegistrationStatus::kTooFewCorrespondences ||
                                  result.status == RegistrationStatus::kTooFewInliers;
   if (!result.converged && corners_undecided && params.local_fallback_min_overlap > 0.0 && params.refinement.enabled &&
       !source.contours.empty() && !target.contours.empty())
-    tryLocalFallback(source, target, params, guess, result);
-  return result;
+    tryLocalFallback(source, target, params, guess, buffers, result);
 }
 
 }  // namespace contour_reg

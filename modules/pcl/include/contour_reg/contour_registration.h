@@ -99,6 +99,7 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   unsigned seed_ = 42;
   std::mt19937 rng_;
   ContourFeatures source_features_, target_features_;
+  RegistrationBuffers buffers_;  // the target's refinement index, kept while the target is unchanged
   bool source_ready_ = false, target_ready_ = false;
   const void *source_cloud_ = nullptr;  // identity of the cloud source_features_ belong to
   RegistrationResult result_;

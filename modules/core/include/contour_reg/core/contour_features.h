@@ -4,6 +4,7 @@
 /// response -> special points. Every intermediate result is kept, so debug
 /// images and tests can show what the algorithm saw.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct ContourFeatures {
   std::vector<EqualizedContour> contours;   ///< stage B, one per segment
   std::vector<CornerResponse> responses;    ///< stage C, one per contour
   std::vector<SpecialPoint> special_points; ///< stage C, all contours
+  /// A number unique to the extractContourFeatures call that filled these features (0 for
+  /// features made any other way): registration keeps its target-side work under it.
+  std::uint64_t extraction = 0;
 
   /// Buffers kept between scans: extracting a scan's features into an object that held an
   /// earlier scan's reuses them, and allocates nothing once they have grown large enough

@@ -55,4 +55,15 @@ std::vector<Correspondence> findCorrespondences(const std::vector<SpecialPoint> 
                                                 const std::vector<SpecialPoint> &target,
                                                 const CorrespondenceParams &params);
 
+/// Working memory of findCorrespondences, kept between calls.
+struct CorrespondenceScratch {
+  std::vector<Correspondence> ranked, best_for_target;
+};
+
+/// The same into `pairs`; `pairs` and `scratch` keep their buffers between calls, so that
+/// below kdtree_min_points nothing is allocated once they are large enough.
+void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vector<SpecialPoint> &target,
+                         const CorrespondenceParams &params, std::vector<Correspondence> &pairs,
+                         CorrespondenceScratch &scratch);
+
 }  // namespace contour_reg

@@ -54,4 +54,15 @@ struct RansacResult {
 RansacResult ransac(const Points2D &source, const Points2D &target, const std::vector<double> &pair_rotations,
                     const RansacParams &params, std::mt19937 &rng);
 
+/// Working memory of ransac, kept between calls.
+struct RansacScratch {
+  std::vector<int> sample;
+  Points2D sample_source, sample_target, inlier_source, inlier_target;
+};
+
+/// The same into `result`; `result` and `scratch` keep their buffers between calls, so that
+/// nothing is allocated once they are large enough.
+void ransac(const Points2D &source, const Points2D &target, const std::vector<double> &pair_rotations,
+            const RansacParams &params, std::mt19937 &rng, RansacResult &result, RansacScratch &scratch);
+
 }  // namespace contour_reg

@@ -56,8 +56,17 @@ struct RefinementResult {
   int iterations = 0;
 };
 
+/// A starting motion for the refinement (source to target, rigid) and the settings to refine it with.
+struct RefinementStart {
+  Eigen::Matrix3d motion;
+  const RefinementParams *params;
+};
+
 /// The equalized source vertices the refinement pairs: one every `sample_step` m along each contour.
 std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, double sample_step);
+
+/// The same into `samples`, reusing its buffer.
+void contourSamples(const ContourFeatures &source, double sample_step, std::vector<Eigen::Vector2d> &samples);
 
 /// Refines `initial` (source to target, rigid) on the contours of two scans.
 RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
@@ -66,7 +75,11 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
 /// Refines several starting motions against one target, whose search index it builds once.
 class ContourRefiner {
  public:
+  /// A refiner without a target: every refinement returns its start until setTarget().
+  ContourRefiner();
   ContourRefiner(const ContourFeatures &target, const RefinementParams &params);
+  /// Indexes a new target, reusing the buffers of the last one's index.
+  void setTarget(const ContourFeatures &target);
   ~ContourRefiner();
   ContourRefiner(const ContourRefiner &) = delete;
   ContourRefiner &operator=(const ContourRefiner &) = delete;

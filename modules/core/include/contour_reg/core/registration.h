@@ -8,6 +8,7 @@
 /// "Converged" means a supported, non-degenerate estimate; otherwise `status` and
 /// `reason` say why not, and the transform is the guess (or identity).
 
+#include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
@@ -92,6 +93,24 @@ struct RegistrationResult {
   bool from_local_fallback = false;
 };
 
+/// What registration keeps between calls: the target's refinement index, rebuilt only when
+/// the target is a different extraction (ContourFeatures::extraction), and the working memory
+/// of every stage. A caller that registers many pairs (odometry, many sources against one
+/// target) keeps one and passes it to every call; once its buffers have grown, a registration
+/// that the corners decide allocates nothing.
+struct RegistrationBuffers {
+  ContourRefiner refiner;
+  std::uint64_t indexed_target = 0;  ///< extraction the refiner indexes (0: none)
+  CorrespondenceScratch correspondence;
+  RansacScratch ransac;
+  RansacResult ransac_result;
+  Points2D pair_sources, pair_targets, inlier_sources;
+  std::vector<double> pair_rotations;
+  std::vector<RefinementStart> starts;
+  std::vector<RefinementResult> refined;
+  std::vector<Eigen::Vector2d> samples, sparse_samples;
+};
+
 /// Registers `source` onto `target`. `guess` (source to target), when given, is the
 /// fallback transform and the start of the local fallback; with guess_max_distance > 0 it gates the pairs, and with the
 /// rotation-dependent FragmentDistance::kReal the source fragments are turned by its yaw
@@ -100,5 +119,15 @@ struct RegistrationResult {
 RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
                                     const RegistrationParams &params, std::mt19937 &rng,
                                     const Eigen::Matrix3d *guess = nullptr);
+
+/// The same, keeping target-side work and buffers in `buffers` for the next call.
+RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
+                                    const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess,
+                                    RegistrationBuffers &buffers);
+
+/// The same into `result`, whose lists keep their buffers as well.
+void registerContours(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
+                      std::mt19937 &rng, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
+                      RegistrationResult &result);
 
 }  // namespace contour_reg

@@ -74,15 +74,16 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
   final_transformation_ = transformation_ = fallback;
   converged_ = false;
   nr_iterations_ = 0;
-  result_ = RegistrationResult{};
   std::string why;
   if (!contour_params_.validate(&why) || !params_.validate(&why)) {
+    result_ = RegistrationResult{};
     PCL_ERROR("[contour_reg::%s::computeTransformation] Invalid parameters: %s.\n", getClassName().c_str(), why.c_str());
     result_.status = RegistrationStatus::kInvalidParameters;
     result_.reason = why;
     return;
   }
   if (!detail::hasFinitePoint(*input_) || !detail::hasFinitePoint(*target_)) {
+    result_ = RegistrationResult{};
     result_.reason = !detail::hasFinitePoint(*input_) ? "source cloud has no valid point" : "target cloud has no valid point";
     PCL_ERROR("[contour_reg::%s::computeTransformation] %s.\n", getClassName().c_str(), result_.reason.c_str());
     result_.status = RegistrationStatus::kTooFewSpecialPoints;
@@ -105,7 +106,7 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
   guess2d = rigidPart(guess2d);
 
   rng_.seed(seed_);
-  result_ = registerContours(source_features_, target_features_, params_, rng_, &guess2d);
+  registerContours(source_features_, target_features_, params_, rng_, &guess2d, buffers_, result_);
   nr_iterations_ = result_.ransac_iterations;
   converged_ = result_.converged;
   if (!converged_) {
