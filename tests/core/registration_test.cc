@@ -153,5 +153,51 @@ TEST(Registration, InvalidParametersAreReported) {
   EXPECT_NE(r.reason.find("inlier_threshold"), std::string::npos);
 }
 
+// Odometry's reuse: features extracted into two alternating objects, one RegistrationBuffers
+// and one result for every step, through corner registrations, a step the corners cannot
+// decide (a corridor) and back. Each step must equal a registration from scratch: the
+// target's index is rebuilt whenever the target is a new extraction, even into the same object.
+TEST(Registration, ReusedBuffersGiveTheSameAnswersAsNewOnes) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  simulation::World corridor;
+  corridor.addSegment({-20.0, -1.0}, {20.0, -1.0});
+  corridor.addSegment({-20.0, 1.0}, {20.0, 1.0});
+  std::vector<LaserScan> scans;
+  for (int k = 0; k < 4; ++k) scans.push_back(test::scanFrom(room, test::pose2d(0.2 * k, 0.1 * k, 4.0 * k), 0.01, k));
+  scans.push_back(test::scanFrom(corridor, test::pose2d(0.0, 0.0, 0.0), 0.01, 10));
+  scans.push_back(test::scanFrom(corridor, test::pose2d(0.3, 0.0, 0.0), 0.01, 11));
+  for (int k = 0; k < 3; ++k) scans.push_back(test::scanFrom(room, test::pose2d(0.3 * k, -0.2 * k, -5.0 * k), 0.01, 20 + k));
+
+  const ContourParams contour_params;
+  const RegistrationParams params;
+  ContourFeatures features[2];
+  RegistrationBuffers buffers;
+  RegistrationResult result;
+  std::mt19937 rng, fresh_rng;
+  extractContourFeatures(scans[0], contour_params, features[0]);
+  int converged = 0;
+  for (std::size_t k = 1; k < scans.size(); ++k) {
+    SCOPED_TRACE(testing::Message() << "step " << k);
+    const ContourFeatures &target = features[(k - 1) % 2];
+    ContourFeatures &source = features[k % 2];
+    extractContourFeatures(scans[k], contour_params, source);
+    rng.seed(7);
+    registerContours(source, target, params, rng, nullptr, buffers, result);
+    fresh_rng.seed(7);
+    const RegistrationResult fresh = registerContours(extractContourFeatures(scans[k], contour_params),
+                                                      extractContourFeatures(scans[k - 1], contour_params), params,
+                                                      fresh_rng);
+    EXPECT_EQ(result.converged, fresh.converged);
+    EXPECT_EQ(result.status, fresh.status);
+    EXPECT_EQ(result.reason, fresh.reason);
+    EXPECT_EQ(result.candidates.size(), fresh.candidates.size());
+    EXPECT_EQ(result.inliers, fresh.inliers);
+    EXPECT_TRUE(result.transform.isApprox(fresh.transform, 1e-12)) << result.transform << "\n" << fresh.transform;
+    EXPECT_DOUBLE_EQ(result.overlap, fresh.overlap);
+    converged += result.converged;
+  }
+  EXPECT_GE(converged, 5);  // the room steps; the corridor step may not
+}
+
 }  // namespace
 }  // namespace contour_reg

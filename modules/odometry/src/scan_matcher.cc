@@ -107,6 +107,7 @@ const std::vector<std::string> &methodNames() {
 
 Cloud::Ptr beamCloud(const LaserScan &scan) {
   auto cloud = pcl::make_shared<Cloud>();
+  cloud->reserve(scan.ranges.size());
   for (const Complex &c : polarCode(scan)) cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
   cloud->is_dense = false;
   return cloud;
@@ -118,6 +119,7 @@ ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool 
 Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan) {
   if (wants_beam_order_) return beamCloud(scan);
   auto finite = pcl::make_shared<Cloud>();  // ICP and NDT take the valid beams only
+  finite->reserve(scan.ranges.size());
   for (const Complex &c : polarCode(scan))
     if (isFinite(c)) finite->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
   return finite;

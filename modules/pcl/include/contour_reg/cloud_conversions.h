@@ -27,11 +27,12 @@ bool isInBearingOrder(const ComplexSequence &points);
 /// Sorts finite points by bearing, from -pi.
 void sortByBearing(ComplexSequence &points);
 
-/// The polar code of a cloud (or of the points named by `indices`, in that order).
+/// The polar code of a cloud (or of the points named by `indices`, in that order), into
+/// `code`, reusing its buffer.
 template <typename PointT>
-ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const pcl::Indices *indices = nullptr) {
-  ComplexSequence code;
+void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &code, const pcl::Indices *indices = nullptr) {
   const std::size_t count = indices ? indices->size() : cloud.size();
+  code.clear();
   code.reserve(count);
   bool has_invalid = false;
   for (std::size_t k = 0; k < count; ++k) {
@@ -40,6 +41,13 @@ ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const p
     has_invalid = has_invalid || !isFinite(code.back());
   }
   if (!has_invalid && !isInBearingOrder(code)) sortByBearing(code);
+}
+
+/// The polar code of a cloud (or of the points named by `indices`, in that order).
+template <typename PointT>
+ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const pcl::Indices *indices = nullptr) {
+  ComplexSequence code;
+  polarCodeFromCloud(cloud, code, indices);
   return code;
 }
 

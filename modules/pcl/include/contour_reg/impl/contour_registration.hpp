@@ -90,12 +90,14 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     return;
   }
   if (!source_ready_) {
-    extractContourFeatures(polarCodeFromCloud(*input_), contour_params_, source_features_);
+    polarCodeFromCloud(*input_, polar_code_);
+    extractContourFeatures(polar_code_, contour_params_, source_features_);
     source_cloud_ = input_.get();
     source_ready_ = true;
   }
   if (!target_ready_) {
-    extractContourFeatures(polarCodeFromCloud(*target_), contour_params_, target_features_);
+    polarCodeFromCloud(*target_, polar_code_);
+    extractContourFeatures(polar_code_, contour_params_, target_features_);
     target_ready_ = true;
   }
 
