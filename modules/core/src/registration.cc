@@ -75,9 +75,6 @@ struct BestRefinement {
   bool ambiguous = false;
 };
 
-// The best overlap wins; where overlaps tie, the motion nearest the guess (no motion
-// without one) wins. Many starts are first screened by a short, sparse refinement; the
-// most promising few are refined in full.
 // The refiner of `buffers`, indexing `target` (rebuilt only for a different extraction).
 const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuffers &buffers) {
   if (target.extraction == 0 || buffers.indexed_target != target.extraction) {
@@ -87,6 +84,9 @@ const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuff
   return buffers.refiner;
 }
 
+// The best overlap wins; where overlaps tie, the motion nearest the guess (no motion
+// without one) wins. Many starts are first screened by a short, sparse refinement; the
+// most promising few are refined in full.
 BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &target,
                           std::vector<RefinementStart> &starts, const Eigen::Matrix3d *guess,
                           RegistrationBuffers &buffers) {
@@ -297,7 +297,7 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
     for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, params.direction_histogram, guess))
       starts.push_back({motion, &params.refinement});
 
-  BestRefinement found = refineBest(source, target, starts, guess, buffers);
+  const BestRefinement found = refineBest(source, target, starts, guess, buffers);
   const RefinementResult &refined = found.best;
   if (refined.overlap < params.local_fallback_min_overlap) {
     result.reason += "; refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
