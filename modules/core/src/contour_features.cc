@@ -18,14 +18,18 @@ void ContourFeatures::clear() {
   extraction = 0;
 }
 
-void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params,
-                            ContourFeatures &features) {
+namespace {
+
+// Stages A-C with the segmentation given apart from the other settings (a scan's own range
+// limits tighten it).
+void extract(const ComplexSequence &polar_code, const SegmentationParams &segmentation, const ContourParams &params,
+             ContourFeatures &features) {
   static std::atomic<std::uint64_t> extractions{0};
   features.extraction = ++extractions;
   ContourFeatures::Buffers &buffers = features.buffers;
-  splitIntoSegments(polar_code, params.segmentation, features.segments, buffers.segments);           // stage A
-  equalizeSegments(features.segments, params.equalization, features.contours, buffers.contours);     // stage B
-  buffers.bank.build(params.corner_filter);                                                          // stage C
+  splitIntoSegments(polar_code, segmentation, features.segments, buffers.segments);  // stage A
+  equalizeSegments(features.segments, params.equalization, features.contours, buffers.contours, buffers.arc);  // B
+  buffers.bank.build(params.corner_filter);                                          // stage C
   buffers.responses.resize(features.responses, features.contours.size());
   buffers.special_points.clear(features.special_points);
   for (std::size_t k = 0; k < features.contours.size(); ++k) {
@@ -35,25 +39,18 @@ void extractContourFeatures(const ComplexSequence &polar_code, const ContourPara
   }
 }
 
+}  // namespace
+
+void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params,
+                            ContourFeatures &features) {
+  extract(polar_code, params.segmentation, params, features);
+}
+
 ContourFeatures extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params) {
   ContourFeatures features;
   extractContourFeatures(polar_code, params, features);
   return features;
 }
-
-namespace {
-
-// The segmentation's range limits tightened by the scan's own.
-ContourParams withScanLimits(const LaserScan &scan, const ContourParams &params) {
-  ContourParams tightened = params;
-  SegmentationParams &seg = tightened.segmentation;
-  seg.range_min = std::max(seg.range_min, scan.range_min);
-  if (scan.range_max > 0.0) seg.range_max = seg.range_max > 0.0 ? std::min(seg.range_max, scan.range_max)
-                                                                : scan.range_max;
-  return tightened;
-}
-
-}  // namespace
 
 ContourFeatures extractContourFeatures(const LaserScan &scan, const ContourParams &params) {
   ContourFeatures features;
@@ -62,10 +59,14 @@ ContourFeatures extractContourFeatures(const LaserScan &scan, const ContourParam
 }
 
 void extractContourFeatures(const LaserScan &scan, const ContourParams &params, ContourFeatures &features) {
-  ComplexSequence code = std::move(features.buffers.polar_code);
+  SegmentationParams segmentation = params.segmentation;  // tightened by the scan's own range limits
+  segmentation.range_min = std::max(segmentation.range_min, scan.range_min);
+  if (scan.range_max > 0.0)
+    segmentation.range_max =
+        segmentation.range_max > 0.0 ? std::min(segmentation.range_max, scan.range_max) : scan.range_max;
+  ComplexSequence &code = features.buffers.polar_code;  // stages A-C read it, never write it
   polarCode(scan, code);
-  extractContourFeatures(code, withScanLimits(scan, params), features);
-  features.buffers.polar_code = std::move(code);
+  extract(code, segmentation, params, features);
 }
 
 }  // namespace contour_reg

@@ -10,30 +10,17 @@ namespace {
 
 // Resamples the polyline at arc lengths 0, step, ..., count * step (eqs. 4-11:
 // each new vertex ends a piece made of the rest of one raw vector, whole raw
-// vectors, and the used part of the raw vector where the piece ends).
-void resample(const ComplexSequence &points, double step, std::size_t count, EqualizedContour &contour) {
+// vectors, and the used part of the raw vector where the piece ends). `arc` is
+// arcLengths(points).
+void resample(const ComplexSequence &points, const std::vector<double> &arc, double step, std::size_t count,
+              EqualizedContour &contour) {
   contour.step = step;
   contour.vertices.clear();
   if (points.size() < 2 || count == 0 || !(step > 0.0)) return;
-  const double total = polylineLength(points);
   contour.vertices.reserve(count + 1);
-  std::size_t n = 0;    // raw vector y(n) = C(n+1) - C(n) the piece ends in
-  double start = 0.0;   // arc length at C(n)
-  double length = magnitude(points[1] - points[0]);
-  for (std::size_t r = 0; r <= count; ++r) {
-    const double s = static_cast<double>(r) * step;
-    if (s >= total) {
-      contour.vertices.push_back(points.back());
-      continue;
-    }
-    while (n + 2 < points.size() && start + length < s) {  // raw vectors passed over whole (eq. 7)
-      start += length;
-      ++n;
-      length = magnitude(points[n + 1] - points[n]);
-    }
-    const double used = length > 0.0 ? (s - start) / length : 0.0;  // used part of the raw vector (eqs. 8-9)
-    contour.vertices.push_back(points[n] + used * (points[n + 1] - points[n]));
-  }
+  std::size_t hint = 0;
+  for (std::size_t r = 0; r <= count; ++r)
+    contour.vertices.push_back(pointAtArcLength(points, arc, static_cast<double>(r) * step, &hint));
 }
 
 // The element length of every segment: the fixed step, or the paper's total length / p.
@@ -44,10 +31,10 @@ double elementStep(const std::vector<ContourSegment> &segments, const Equalizati
   return total / std::max(params.count, 1);
 }
 
-// The number of elements of a segment at a fixed step.
-std::size_t elementCountAtStep(const ComplexSequence &points, double step) {
+// The number of elements of a polyline `length` m long at a fixed step.
+std::size_t elementCountAtStep(double length, double step) {
   // A tiny tolerance keeps a segment whose length is an exact multiple of the step whole.
-  return static_cast<std::size_t>(std::floor(polylineLength(points) / step + 1e-9));
+  return static_cast<std::size_t>(std::floor(length / step + 1e-9));
 }
 
 }  // namespace
@@ -89,16 +76,17 @@ Complex pointAtArcLength(const ComplexSequence &points, const std::vector<double
 // Eq. (3): e = (1/p) * sum |y(n)|.
 EqualizedContour equalizeByCount(const ComplexSequence &points, int count) {
   EqualizedContour contour;
-  if (count < 1) return contour;
-  const double length = polylineLength(points);
-  resample(points, length / count, static_cast<std::size_t>(count), contour);
+  if (count < 1 || points.empty()) return contour;
+  const std::vector<double> arc = arcLengths(points);
+  resample(points, arc, arc.back() / count, static_cast<std::size_t>(count), contour);
   return contour;
 }
 
 EqualizedContour equalizeByStep(const ComplexSequence &points, double step) {
   EqualizedContour contour;
-  if (!(step > 0.0)) return contour;
-  resample(points, step, elementCountAtStep(points, step), contour);
+  if (!(step > 0.0) || points.empty()) return contour;
+  const std::vector<double> arc = arcLengths(points);
+  resample(points, arc, step, elementCountAtStep(arc.back(), step), contour);
   return contour;
 }
 
@@ -106,26 +94,29 @@ std::vector<EqualizedContour> equalizeSegments(const std::vector<ContourSegment>
                                                const EqualizationParams &params) {
   std::vector<EqualizedContour> contours;
   SpareElements<EqualizedContour> spare;
-  equalizeSegments(segments, params, contours, spare);
+  std::vector<double> arc;
+  equalizeSegments(segments, params, contours, spare, arc);
   return contours;
 }
 
 void equalizeSegments(const std::vector<ContourSegment> &segments, const EqualizationParams &params,
-                      std::vector<EqualizedContour> &contours, SpareElements<EqualizedContour> &spare) {
+                      std::vector<EqualizedContour> &contours, SpareElements<EqualizedContour> &spare,
+                      std::vector<double> &arc) {
   spare.resize(contours, segments.size());
   const double step = elementStep(segments, params);
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const ComplexSequence &points = segments[k].points;
     EqualizedContour &contour = contours[k];
+    contour.segment = static_cast<int>(k);
+    arcLengths(points, arc);
+    const double length = arc.empty() ? 0.0 : arc.back();
     if (params.mode == EqualizationMode::kFixedCount) {
       // Each segment gets a whole number of elements, near its share of the p.
-      const double length = polylineLength(points);
       const long count = step > 0.0 ? std::max(1L, std::lround(length / step)) : 1L;
-      resample(points, length / static_cast<double>(count), static_cast<std::size_t>(count), contour);
+      resample(points, arc, length / static_cast<double>(count), static_cast<std::size_t>(count), contour);
     } else {
-      resample(points, step, step > 0.0 ? elementCountAtStep(points, step) : 0, contour);
+      resample(points, arc, step, step > 0.0 ? elementCountAtStep(length, step) : 0, contour);
     }
-    contour.segment = static_cast<int>(k);
   }
 }
 

@@ -46,13 +46,20 @@ std::size_t countInliers(const Eigen::Matrix3d &transform, const Points2D &sourc
   return count;
 }
 
-// The inliers themselves, into `inliers`.
-void listInliers(const Eigen::Matrix3d &transform, const Points2D &source, const Points2D &target, double threshold,
-                 std::vector<int> &inliers) {
+// The inliers themselves, into `inliers`; returns the sum of their squared errors.
+double listInliers(const Eigen::Matrix3d &transform, const Points2D &source, const Points2D &target, double threshold,
+                   std::vector<int> &inliers) {
   inliers.clear();
+  double squared_error = 0.0;
   const double t2 = threshold * threshold;
-  for (std::size_t i = 0; i < source.size(); ++i)
-    if ((apply(transform, source[i]) - target[i]).squaredNorm() < t2) inliers.push_back(static_cast<int>(i));
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    const double e2 = (apply(transform, source[i]) - target[i]).squaredNorm();
+    if (e2 < t2) {
+      inliers.push_back(static_cast<int>(i));
+      squared_error += e2;
+    }
+  }
+  return squared_error;
 }
 
 // Draws `size` distinct indices below n.
@@ -157,7 +164,7 @@ void ransac(const Points2D &source, const Points2D &target, const std::vector<do
   if (!result.found) return;
 
   // Refit on all inliers, recount, and keep the refit when it does not lose inliers.
-  listInliers(result.transform, source, target, params.inlier_threshold, result.inliers);
+  double error = listInliers(result.transform, source, target, params.inlier_threshold, result.inliers);
   Points2D &in_source = scratch.inlier_source, &in_target = scratch.inlier_target;
   for (int round = 0; round < 2; ++round) {
     in_source.clear();
@@ -168,13 +175,11 @@ void ransac(const Points2D &source, const Points2D &target, const std::vector<do
     }
     Eigen::Matrix3d refit;
     if (!fit(params, in_source, in_target, refit)) break;
-    double error = 0.0;
-    if (countInliers(refit, source, target, params.inlier_threshold, error) < result.inliers.size()) break;
+    double refit_error = 0.0;
+    if (countInliers(refit, source, target, params.inlier_threshold, refit_error) < result.inliers.size()) break;
     result.transform = refit;
-    listInliers(result.transform, source, target, params.inlier_threshold, result.inliers);
+    error = listInliers(result.transform, source, target, params.inlier_threshold, result.inliers);
   }
-  double error = 0.0;
-  countInliers(result.transform, source, target, params.inlier_threshold, error);
   result.rmse = result.inliers.empty() ? 0.0 : std::sqrt(error / static_cast<double>(result.inliers.size()));
 }
 

@@ -100,7 +100,6 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   std::mt19937 rng_;
   ContourFeatures source_features_, target_features_;
   RegistrationBuffers buffers_;  // the target's refinement index, kept while the target is unchanged
-  ComplexSequence polar_code_;   // buffer of the cloud being turned into features
   bool source_ready_ = false, target_ready_ = false;
   const void *source_cloud_ = nullptr;  // identity of the cloud source_features_ belong to
   RegistrationResult result_;

@@ -46,7 +46,7 @@ struct ContourFeatures {
     SpareElements<SpecialPoint> special_points;
     CornerBank bank;
     std::vector<double> arc;
-    ComplexSequence polar_code;
+    ComplexSequence polar_code;  ///< the scan's polar code, for callers that start from a scan or cloud
   } buffers;
 
   /// Empties the features, keeping their buffers.

@@ -68,8 +68,10 @@ EqualizedContour equalizeByStep(const ComplexSequence &points, double step);
 std::vector<EqualizedContour> equalizeSegments(const std::vector<ContourSegment> &segments,
                                                const EqualizationParams &params);
 
-/// The same into `contours`, whose elements' buffers (and those kept in `spare`) are reused.
+/// The same into `contours`, whose elements' buffers (and those kept in `spare`) are reused;
+/// `arc` is working memory for each segment's arc lengths.
 void equalizeSegments(const std::vector<ContourSegment> &segments, const EqualizationParams &params,
-                      std::vector<EqualizedContour> &contours, SpareElements<EqualizedContour> &spare);
+                      std::vector<EqualizedContour> &contours, SpareElements<EqualizedContour> &spare,
+                      std::vector<double> &arc);
 
 }  // namespace contour_reg

@@ -90,14 +90,16 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     return;
   }
   if (!source_ready_) {
-    polarCodeFromCloud(*input_, polar_code_);
-    extractContourFeatures(polar_code_, contour_params_, source_features_);
+    ComplexSequence &code = source_features_.buffers.polar_code;  // the extraction reads it, never writes it
+    polarCodeFromCloud(*input_, code);
+    extractContourFeatures(code, contour_params_, source_features_);
     source_cloud_ = input_.get();
     source_ready_ = true;
   }
   if (!target_ready_) {
-    polarCodeFromCloud(*target_, polar_code_);
-    extractContourFeatures(polar_code_, contour_params_, target_features_);
+    ComplexSequence &code = target_features_.buffers.polar_code;
+    polarCodeFromCloud(*target_, code);
+    extractContourFeatures(code, contour_params_, target_features_);
     target_ready_ = true;
   }
 
