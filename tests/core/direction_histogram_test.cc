@@ -115,5 +115,54 @@ TEST(LocalFallback, SymmetricSceneIsReportedAmbiguous) {
   EXPECT_NE(r.reason.find("distinct motions fit equally well"), std::string::npos) << r.reason;
 }
 
+// A corridor 2.5 m wide, open behind the sensor, and ahead at `end` m either closed or
+// ending in a stub of `stub` m on one wall.
+simulation::World corridorEndingIn(double end, double stub) {
+  simulation::World corridor;
+  corridor.addSegment({-12.0, 1.3}, {end, 1.3});
+  corridor.addSegment({-12.0, -1.2}, {end, -1.2});
+  corridor.addSegment({end, -1.2}, {end, -1.2 + stub});
+  return corridor;
+}
+
+constexpr double kAlongTheAxis[] = {0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5};  // m
+
+TEST(LocalFallback, CorridorWithAClosedEndPassesTheProbes) {
+  const simulation::World corridor = corridorEndingIn(10.0, 2.5);
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
+  for (double along : kAlongTheAxis) {
+    SCOPED_TRACE(testing::Message() << along << " m along the corridor");
+    const Eigen::Isometry2d motion = test::pose2d(along, 0.05, 2);
+    const RegistrationResult r = registerWithoutCorners(featuresFrom(corridor, motion, 9), target, true);
+    ASSERT_TRUE(r.converged) << r.reason;
+    EXPECT_TRUE(r.from_local_fallback);
+    EXPECT_NEAR(r.transform(0, 2), along, 0.03);
+    EXPECT_NEAR(r.transform(1, 2), 0.05, 0.03);
+    EXPECT_NEAR(yawOf(r.transform), 2.0 * kDeg, 0.5 * kDeg);
+  }
+}
+
+TEST(LocalFallback, CorridorWhoseAxisOnlyAStubConstrainsFailsTheProbes) {
+  // The end wall is a 0.4 m stub: moving along the axis barely changes the fit.
+  const simulation::World corridor = corridorEndingIn(6.0, 0.4);
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
+  RegistrationParams without_probe;
+  without_probe.min_special_points = 1 << 20;
+  without_probe.local_fallback_probe = 0.0;
+  int wrong_without_probe = 0;
+  for (double along : kAlongTheAxis) {
+    SCOPED_TRACE(testing::Message() << along << " m along the corridor");
+    const ContourFeatures source = featuresFrom(corridor, test::pose2d(along, 0.05, 2), 9);
+    const RegistrationResult r = registerWithoutCorners(source, target, true);
+    EXPECT_FALSE(r.converged) << r.transform;
+    EXPECT_NE(r.reason.find("weakly constrained"), std::string::npos) << r.reason;
+    std::mt19937 rng(5);
+    const RegistrationResult unchecked = registerContours(source, target, without_probe, rng);
+    if (unchecked.converged && std::abs(unchecked.transform(0, 2) - along) > 0.1) ++wrong_without_probe;
+  }
+  // Without the probes the fallback claims a wrong position along the axis.
+  EXPECT_GT(wrong_without_probe, 0);
+}
+
 }  // namespace
 }  // namespace contour_reg

@@ -75,6 +75,12 @@ struct BearingIndex {
   }
 };
 
+// Units that measure rotation in metres of arc at the RMS range of the paired points
+// (1, 1, 1 / range), so that eigenvalues of translation and rotation compare.
+Eigen::Vector3d arcUnits(double rms_range) { return {1.0, 1.0, rms_range > 1e-6 ? 1.0 / rms_range : 1.0}; }
+
+double rmsRange(double lever_squares, double weight_sum) { return std::sqrt(lever_squares / std::max(weight_sum, 1e-12)); }
+
 }  // namespace
 
 std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, double sample_step) {
@@ -174,10 +180,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.rmse = pairs > 0 ? std::sqrt(weighted_squares / pairs) : 0.0;
     information = h;
     if (pairs < 6) break;
-    // Solve only along well-constrained directions. Rotation is measured in metres of arc at
-    // the RMS range first, so that eigenvalues of translation and rotation compare.
-    const double lever = std::sqrt(lever_squares / std::max(weight_sum, 1e-12));
-    const Eigen::Vector3d unit(1.0, 1.0, lever > 1e-6 ? 1.0 / lever : 1.0);
+    // Solve only along well-constrained directions, rotation measured in metres of arc.
+    const Eigen::Vector3d unit = arcUnits(rmsRange(lever_squares, weight_sum));
     const Eigen::Matrix3d scaled_h = unit.asDiagonal() * h * unit.asDiagonal();
     const Eigen::Vector3d scaled_g = unit.asDiagonal() * g;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scaled_h);
@@ -209,6 +213,10 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       result.rotation_constraint_ratio = std::max(0.0, h_rr - h_tr.dot(h_tt.inverse() * h_tr)) / lever_squares;
     result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
+    result.rms_range = rmsRange(lever_squares, weight_sum);
+    const Eigen::Vector3d unit = arcUnits(result.rms_range);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> scaled(unit.asDiagonal() * information * unit.asDiagonal());
+    result.weakest_direction = unit.asDiagonal() * scaled.eigenvectors().col(0);
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
     if (lu.isInvertible()) result.covariance = params.covariance_scale * sigma2 * lu.inverse();

@@ -47,6 +47,10 @@ bool RegistrationParams::validate(std::string *why) const {
     if (why) *why = "local_fallback_max_distance must be > 0";
     return false;
   }
+  if (!(local_fallback_probe >= 0.0)) {
+    if (why) *why = "local_fallback_probe must be >= 0";
+    return false;
+  }
   if (min_special_points < 2 || min_inliers < 2) {
     if (why) *why = "min_special_points and min_inliers must be >= 2";
     return false;
@@ -83,6 +87,9 @@ const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuff
   }
   return buffers.refiner;
 }
+
+// Refined motions whose overlaps differ by less than this fit about as well.
+constexpr double kOverlapTie = 0.05;
 
 // The best overlap wins; where overlaps tie, the motion nearest the guess (no motion
 // without one) wins. Many starts are first screened by a short, sparse refinement; the
@@ -132,7 +139,6 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
   refined.clear();
   for (const RefinementStart &start : starts) refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
-  constexpr double kOverlapTie = 0.05;
   BestRefinement result{refined.front()};
   for (const RefinementResult &r : refined) {
     const bool better = r.overlap > result.best.overlap + kOverlapTie ||
@@ -145,6 +151,29 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
     if (r.overlap > result.best.overlap - kOverlapTie && distance(r.transform, result.best.transform) > kDistinct)
       result.ambiguous = true;
   return result;
+}
+
+// Whether `best` is pinned along its weakest direction (RefinementResult::weakest_direction):
+// started `probe` m off along it, both ways, the refinement must settle back on it, or at
+// least fit worse where it settles. In a room the probes come back or lose overlap; a bare
+// corridor, a circle turned about its centre, a corridor whose axis only a small stub
+// constrains leave them elsewhere with as good a fit.
+constexpr double kSettledBack = 0.25;  // of the probe distance
+// `samples` are the source's, `refiner` indexes the target.
+bool settlesBack(const RefinementResult &best, double probe, const RefinementParams &params,
+                 const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
+  if (best.weakest_direction.isZero()) return false;
+  const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
+  for (const double sign : {1.0, -1.0}) {
+    const Eigen::Vector3d off = sign * probe * best.weakest_direction;
+    const RefinementResult r = refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), params);
+    // How far from `best` the probe settled, rotation in metres of arc.
+    const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
+                                        std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
+                            .norm();
+    if (left > kSettledBack * probe && r.overlap > best.overlap - kOverlapTie) return false;
+  }
+  return true;
 }
 
 // Empties `result`, keeping the buffers of its lists.
@@ -304,8 +333,9 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
                      " % of the source contour lies on the target";
     return;
   }
-  if (refined.degenerate || refined.constraint_ratio < params.local_fallback_min_constraint ||
-      refined.rotation_constraint_ratio < params.local_fallback_min_constraint) {
+  if (refined.degenerate || (params.local_fallback_probe > 0.0 &&
+                              !settlesBack(refined, params.local_fallback_probe, params.refinement, buffers.refiner,
+                                           buffers.samples))) {
     result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return;
   }

@@ -53,6 +53,13 @@ struct RefinementResult {
   /// sight): 0 for a circle seen from inside, where turning about its centre changes nothing;
   /// 0.1 to 0.5 in rooms.
   double rotation_constraint_ratio = 0.0;
+  /// m, RMS distance of the paired source points from the sensor: a turn of a radians moves
+  /// them by about a * rms_range metres.
+  double rms_range = 0.0;
+  /// The motion (x m, y m, yaw rad) along which the contours constrain the estimate least: a
+  /// corridor's axis, a turn about a circle's centre. Scaled so that it moves the source
+  /// points by 1 m at rms_range. Zero when too few points were paired.
+  Eigen::Vector3d weakest_direction = Eigen::Vector3d::Zero();
   int iterations = 0;
 };
 

@@ -43,18 +43,20 @@ struct RegistrationParams {
   /// the contours the guess (identity without one), the motion each candidate pair of
   /// corners implies, and the motions the contour directions suggest (direction_histogram.h),
   /// and accept the best when at least this fraction of the source contour then lies on the
-  /// target contour, every direction is well constrained (local_fallback_min_constraint) and
-  /// no distinct motion fits as well. <= 0 disables it: such pairs then fail. The result
+  /// target contour, the contours pin it in every direction (local_fallback_probe) and no
+  /// distinct motion fits as well. <= 0 disables it: such pairs then fail. The result
   /// says when it came from here (from_local_fallback).
   double local_fallback_min_overlap = 0.4;
   /// m, the refinement of the guess in the local fallback starts pairing points this far apart.
   double local_fallback_max_distance = 1.0;
   /// Motions from the contours' direction and wall-offset histograms join the fallback's starts.
   bool direction_hypotheses = true;
-  /// The local fallback also needs the contours to constrain every direction: the
-  /// translation's weakest / strongest eigenvalue ratio and the rotation's share left once
-  /// translation is solved (RefinementResult) both at least this.
-  double local_fallback_min_constraint = 0.1;
+  /// m: the local fallback's motion, refined again from this far off along its weakest
+  /// direction (RefinementResult::weakest_direction), both ways, must settle back or fit
+  /// worse where it settles. A room or a corridor with a closed end passes; a bare corridor,
+  /// a circle seen from inside or a corridor whose axis only a small stub constrains stay
+  /// "not converged". 0 skips this check.
+  double local_fallback_probe = 0.2;
 
   bool validate(std::string *why = nullptr) const;
 };
