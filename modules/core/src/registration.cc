@@ -378,7 +378,8 @@ void registerContours(const ContourFeatures &source, const ContourFeatures &targ
   registerByCorners(source, target, params, rng, guess, buffers, result);
   const bool corners_undecided = result.status == RegistrationStatus::kTooFewSpecialPoints ||
                                  result.status == RegistrationStatus::kTooFewCorrespondences ||
-                                 result.status == RegistrationStatus::kTooFewInliers;
+                                 result.status == RegistrationStatus::kTooFewInliers ||
+                                 result.status == RegistrationStatus::kDegenerate;
   if (!result.converged && corners_undecided && params.local_fallback_min_overlap > 0.0 && params.refinement.enabled &&
       !source.contours.empty() && !target.contours.empty())
     tryLocalFallback(source, target, params, guess, buffers, result);

@@ -39,13 +39,14 @@ struct RegistrationParams {
   /// guess_max_rotation, are dropped. <= 0 ignores the guess for pairing.
   double guess_max_distance = 0.0;
   double guess_max_rotation = 0.5;  ///< rad
-  /// When the corners cannot decide (too few special points, pairs or inliers), refine on
-  /// the contours the guess (identity without one), the motion each candidate pair of
-  /// corners implies, and the motions the contour directions suggest (direction_histogram.h),
-  /// and accept the best when at least this fraction of the source contour then lies on the
-  /// target contour, the contours pin it in every direction (local_fallback_probe) and no
-  /// distinct motion fits as well. <= 0 disables it: such pairs then fail. The result
-  /// says when it came from here (from_local_fallback).
+  /// When the corners cannot decide (too few special points, pairs or inliers, or inliers
+  /// too close together or collinear), refine on the contours the guess (identity without
+  /// one), the motion each candidate pair of corners implies, and the motions the contour
+  /// directions suggest (direction_histogram.h), and accept the best when at least this
+  /// fraction of the source contour then lies on the target contour, the contours pin it in
+  /// every direction (local_fallback_probe) and no distinct motion fits as well. <= 0
+  /// disables it: such pairs then fail. The result says when it came from here
+  /// (from_local_fallback).
   double local_fallback_min_overlap = 0.4;
   /// m, the refinement of the guess in the local fallback starts pairing points this far apart.
   double local_fallback_max_distance = 1.0;
