@@ -25,8 +25,8 @@ struct SegmentationParams {
   double range_max = 0.0;          ///< m, points at or beyond are invalid (0: no limit)
   double max_gap = 0.25;           ///< m, a jump longer than max_gap + max_gap_ratio * range splits
   double max_gap_ratio = 0.10;     ///< relative part of the jump threshold (grazing walls)
-  int min_segment_points = 5;      ///< segments with fewer points are dropped
-  double min_segment_length = 0.3; ///< m, segments shorter than this are dropped
+  int min_segment_points = 3;      ///< segments with fewer points are dropped
+  double min_segment_length = 0.1; ///< m, segments shorter than this are dropped
 
   /// True when the values make sense; `why` names the first bad one.
   bool validate(std::string *why = nullptr) const;
