@@ -1,5 +1,6 @@
-// Motion hypotheses from the contours' direction and wall-offset histograms, and the local
-// fallback that refines them when the corners cannot decide.
+// Motion hypotheses from the contours' direction and wall-offset histograms, the local
+// fallback that refines them when the corners cannot decide, and the probe along the weakest
+// direction that both the fallback and motions of few corners must pass.
 #include <cmath>
 #include <random>
 
@@ -162,6 +163,34 @@ TEST(LocalFallback, CorridorWhoseAxisOnlyAStubConstrainsFailsTheProbes) {
   }
   // Without the probes the fallback claims a wrong position along the axis.
   EXPECT_GT(wrong_without_probe, 0);
+}
+
+TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatGoesToTheFallback) {
+  // A corridor with a door recess every 3 m along one wall: seen from 1 m further on, three
+  // door corners match, and the walls cannot confirm the position along the axis.
+  simulation::World corridor;
+  corridor.addSegment({-15.0, 1.3}, {15.0, 1.3});
+  for (double x = -15.0; x < 15.0; x += 3.0) {
+    corridor.addSegment({x, -1.2}, {x + 2.1, -1.2});
+    corridor.addSegment({x + 2.1, -1.2}, {x + 2.1, -1.5});
+    corridor.addSegment({x + 2.1, -1.5}, {x + 3.0, -1.5});
+    corridor.addSegment({x + 3.0, -1.5}, {x + 3.0, -1.2});
+  }
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
+  const ContourFeatures source = featuresFrom(corridor, test::pose2d(1.0, 0.05, 2), 9);
+  RegistrationParams unchecked;
+  unchecked.probe_max_inliers = 0;
+  std::mt19937 rng(5);
+  const RegistrationResult corners_alone = registerContours(source, target, unchecked, rng);
+  ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
+  ASSERT_EQ(corners_alone.inliers.size(), 3u);
+  EXPECT_NEAR(corners_alone.transform(0, 2), 1.0, 0.03);
+
+  rng.seed(5);
+  const RegistrationResult r = registerContours(source, target, RegistrationParams{}, rng);
+  EXPECT_FALSE(r.converged) << r.transform;
+  EXPECT_NE(r.reason.find("3 special points, and the contours leave a direction weakly constrained"), std::string::npos)
+      << r.reason;
 }
 
 }  // namespace

@@ -293,6 +293,15 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
                   "too few inliers: 2 special points, and the contours overlap only " +
                       std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
     }
+    // A few corners, often along one wall, pin the motion no better than they are spread:
+    // the contours must pin it too.
+    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) && params.local_fallback_probe > 0.0 &&
+        !settlesBack(refined, params.local_fallback_probe, params.refinement, buffers.refiner, buffers.samples)) {
+      result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
+      return fail(result, RegistrationStatus::kTooFewInliers,
+                  "too few inliers: " + std::to_string(inlier_sources.size()) +
+                      " special points, and the contours leave a direction weakly constrained");
+    }
   }
   result.converged = true;
   result.status = RegistrationStatus::kConverged;

@@ -58,6 +58,10 @@ struct RegistrationParams {
   /// a circle seen from inside or a corridor whose axis only a small stub constrains stay
   /// "not converged". 0 skips this check.
   double local_fallback_probe = 0.2;
+  /// A motion the corners decide with at most this many inlier special points must pass the
+  /// same probe (when it is on); one that does not goes to the local fallback. Three corners
+  /// along one wall of a corridor fix its axis only as well as they are spread.
+  int probe_max_inliers = 3;
 
   bool validate(std::string *why = nullptr) const;
 };
