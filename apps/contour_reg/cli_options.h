@@ -24,7 +24,7 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
 /// Method settings worth studying from the command line; defaults are the library's.
 struct MethodOptions {
   double contour_step = 0.05, threshold = 0.08, local_fallback = RegistrationParams{}.local_fallback_min_overlap,
-         local_fallback_probe = RegistrationParams{}.local_fallback_probe;
+         probe_distance = RegistrationParams{}.probe_distance;
   int candidates = 3, arm_elements = 5;
   double icp_max_correspondence = 1.0, ndt_resolution = 1.0;
   int iterations = 50;
@@ -36,7 +36,7 @@ struct MethodOptions {
     s.contour.corner_filter.arm_elements = arm_elements;
     s.registration.correspondence.candidates_per_point = candidates;
     s.registration.local_fallback_min_overlap = local_fallback;
-    s.registration.local_fallback_probe = local_fallback_probe;
+    s.registration.probe_distance = probe_distance;
     s.icp_max_correspondence = icp_max_correspondence;
     s.icp_iterations = iterations;
     s.ndt_resolution = ndt_resolution;
@@ -52,8 +52,8 @@ inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
   command.add_option("--local-fallback", options.local_fallback,
                      "Contour: min contour overlap to accept the refined guess when corners cannot decide (0: off)")
       ->capture_default_str();
-  command.add_option("--local-fallback-probe", options.local_fallback_probe,
-                     "Contour: the local fallback's motion must settle back when refined from this far off along its weakest direction (m, 0: no check)")
+  command.add_option("--probe-distance", options.probe_distance,
+                     "Contour: a motion of the local fallback or of few corners must settle back when refined from this far off along its weakest direction (m, 0: no check)")
       ->capture_default_str();
   command.add_option("--icp-max-distance", options.icp_max_correspondence, "ICP/GICP: max correspondence distance (m)")
       ->capture_default_str();

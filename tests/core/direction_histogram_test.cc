@@ -149,7 +149,7 @@ TEST(LocalFallback, CorridorWhoseAxisOnlyAStubConstrainsFailsTheProbes) {
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
   RegistrationParams without_probe;
   without_probe.min_special_points = 1 << 20;
-  without_probe.local_fallback_probe = 0.0;
+  without_probe.probe_distance = 0.0;
   int wrong_without_probe = 0;
   for (double along : kAlongTheAxis) {
     SCOPED_TRACE(testing::Message() << along << " m along the corridor");

@@ -47,8 +47,8 @@ bool RegistrationParams::validate(std::string *why) const {
     if (why) *why = "local_fallback_max_distance must be > 0";
     return false;
   }
-  if (!(local_fallback_probe >= 0.0)) {
-    if (why) *why = "local_fallback_probe must be >= 0";
+  if (!(probe_distance >= 0.0)) {
+    if (why) *why = "probe_distance must be >= 0";
     return false;
   }
   if (min_special_points < 2 || min_inliers < 2) {
@@ -153,13 +153,15 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
   return result;
 }
 
+// A probe has settled back when it ends within this fraction of the probe distance.
+constexpr double kSettledBack = 0.25;
+
 // Whether `best` is pinned along its weakest direction (RefinementResult::weakest_direction):
-// started `probe` m off along it, both ways, the refinement must settle back on it, or at
-// least fit worse where it settles. In a room the probes come back or lose overlap; a bare
-// corridor, a circle turned about its centre, a corridor whose axis only a small stub
-// constrains leave them elsewhere with as good a fit.
-constexpr double kSettledBack = 0.25;  // of the probe distance
-// `samples` are the source's, `refiner` indexes the target.
+// started `probe` m off along it, both ways, the refinement of the source's `samples` against
+// the `refiner`'s target must settle back on it, or at least fit worse where it settles. In a
+// room the probes come back or lose overlap; a bare corridor, a circle turned about its
+// centre, a corridor whose axis only a small stub constrains leave them elsewhere with as
+// good a fit.
 bool settlesBack(const RefinementResult &best, double probe, const RefinementParams &params,
                  const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
   if (best.weakest_direction.isZero()) return false;
@@ -295,8 +297,8 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     }
     // A few corners, often along one wall, pin the motion no better than they are spread:
     // the contours must pin it too.
-    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) && params.local_fallback_probe > 0.0 &&
-        !settlesBack(refined, params.local_fallback_probe, params.refinement, buffers.refiner, buffers.samples)) {
+    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) && params.probe_distance > 0.0 &&
+        !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples)) {
       result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
       return fail(result, RegistrationStatus::kTooFewInliers,
                   "too few inliers: " + std::to_string(inlier_sources.size()) +
@@ -342,8 +344,8 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
                      " % of the source contour lies on the target";
     return;
   }
-  if (refined.degenerate || (params.local_fallback_probe > 0.0 &&
-                              !settlesBack(refined, params.local_fallback_probe, params.refinement, buffers.refiner,
+  if (refined.degenerate || (params.probe_distance > 0.0 &&
+                              !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner,
                                            buffers.samples))) {
     result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return;

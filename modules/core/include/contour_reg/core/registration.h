@@ -44,20 +44,19 @@ struct RegistrationParams {
   /// one), the motion each candidate pair of corners implies, and the motions the contour
   /// directions suggest (direction_histogram.h), and accept the best when at least this
   /// fraction of the source contour then lies on the target contour, the contours pin it in
-  /// every direction (local_fallback_probe) and no distinct motion fits as well. <= 0
-  /// disables it: such pairs then fail. The result says when it came from here
-  /// (from_local_fallback).
+  /// every direction (probe_distance) and no distinct motion fits as well. <= 0 disables it:
+  /// such pairs then fail. The result says when it came from here (from_local_fallback).
   double local_fallback_min_overlap = 0.4;
   /// m, the refinement of the guess in the local fallback starts pairing points this far apart.
   double local_fallback_max_distance = 1.0;
   /// Motions from the contours' direction and wall-offset histograms join the fallback's starts.
   bool direction_hypotheses = true;
-  /// m: the local fallback's motion, refined again from this far off along its weakest
-  /// direction (RefinementResult::weakest_direction), both ways, must settle back or fit
-  /// worse where it settles. A room or a corridor with a closed end passes; a bare corridor,
-  /// a circle seen from inside or a corridor whose axis only a small stub constrains stay
-  /// "not converged". 0 skips this check.
-  double local_fallback_probe = 0.2;
+  /// m, the probe: the local fallback's motion, refined again from this far off along its
+  /// weakest direction (RefinementResult::weakest_direction), both ways, must settle back or
+  /// fit worse where it settles. A room or a corridor with a closed end passes; a bare
+  /// corridor, a circle seen from inside or a corridor whose axis only a small stub
+  /// constrains stay "not converged". 0 skips this check.
+  double probe_distance = 0.2;
   /// A motion the corners decide with at most this many inlier special points must pass the
   /// same probe (when it is on); one that does not goes to the local fallback. Three corners
   /// along one wall of a corridor fix its axis only as well as they are spread.
