@@ -11,6 +11,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "contour_reg/core/transform_estimation.h"
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
@@ -98,7 +99,8 @@ int runRelations(const RelationsOptions &options) {
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
       const double et = std::hypot(t(0, 2) - r.motion.x, t(1, 2) - r.motion.y);
-      const double er = std::abs(std::remainder(std::atan2(t(1, 0), t(0, 0)) - r.motion.yaw, 2 * M_PI)) * 180 / M_PI;
+      const double yaw = yawOf(t);
+      const double er = std::abs(std::remainder(yaw - r.motion.yaw, 2 * M_PI)) * 180 / M_PI;
       const bool ok = et <= options.tolerance && er <= options.tolerance_deg;
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
@@ -106,7 +108,7 @@ int runRelations(const RelationsOptions &options) {
       if (csv)
         std::fprintf(csv, "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\"\n", name.c_str(),
                      pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2), t(1, 2),
-                     std::atan2(t(1, 0), t(0, 0)), match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er,
+                     yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er,
                      match.milliseconds, match.converged ? "converged" : match.status.c_str(), match.reason.c_str());
       if (match.converged && ok) {
         ++recovered;

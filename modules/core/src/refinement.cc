@@ -181,11 +181,13 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     information = h;
     if (pairs < 6) break;
     // Solve only along well-constrained directions, rotation measured in metres of arc.
-    const Eigen::Vector3d unit = arcUnits(rmsRange(lever_squares, weight_sum));
+    result.rms_range = rmsRange(lever_squares, weight_sum);
+    const Eigen::Vector3d unit = arcUnits(result.rms_range);
     const Eigen::Matrix3d scaled_h = unit.asDiagonal() * h * unit.asDiagonal();
     const Eigen::Vector3d scaled_g = unit.asDiagonal() * g;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scaled_h);
     const Eigen::Vector3d values = eigen.eigenvalues();
+    result.weakest_direction = unit.asDiagonal() * eigen.eigenvectors().col(0);
     Eigen::Vector3d step = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) {
       if (values(k) <= params.degeneracy_ratio * values(2)) continue;
@@ -213,15 +215,13 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       result.rotation_constraint_ratio = std::max(0.0, h_rr - h_tr.dot(h_tt.inverse() * h_tr)) / lever_squares;
     result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
-    result.rms_range = rmsRange(lever_squares, weight_sum);
-    const Eigen::Vector3d unit = arcUnits(result.rms_range);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> scaled(unit.asDiagonal() * information * unit.asDiagonal());
-    result.weakest_direction = unit.asDiagonal() * scaled.eigenvectors().col(0);
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
     if (lu.isInvertible()) result.covariance = params.covariance_scale * sigma2 * lu.inverse();
   } else {
     result.degenerate = true;
+    result.rms_range = 0.0;  // an earlier iteration's, with too few pairs now
+    result.weakest_direction.setZero();
   }
   return result;
 }

@@ -161,9 +161,10 @@ constexpr double kSettledBack = 0.25;
 // the `refiner`'s target must settle back on it, or at least fit worse where it settles. In a
 // room the probes come back or lose overlap; a bare corridor, a circle turned about its
 // centre, a corridor whose axis only a small stub constrains leave them elsewhere with as
-// good a fit.
+// good a fit. A probe distance of 0 turns the check off.
 bool settlesBack(const RefinementResult &best, double probe, const RefinementParams &params,
                  const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
+  if (!(probe > 0.0)) return true;
   if (best.weakest_direction.isZero()) return false;
   const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
   for (const double sign : {1.0, -1.0}) {
@@ -297,7 +298,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     }
     // A few corners, often along one wall, pin the motion no better than they are spread:
     // the contours must pin it too.
-    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) && params.probe_distance > 0.0 &&
+    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) &&
         !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples)) {
       result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
       return fail(result, RegistrationStatus::kTooFewInliers,
@@ -322,9 +323,10 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
   // Each candidate pair of corners is a full hypothesis on its own: the rotation arg (N, G)
   // of eq. (14) and the translation that brings the two corners together.
   if (params.correspondence.distance == FragmentDistance::kModulus) {
-    const std::vector<Correspondence> pairs =
-        result.candidates.empty() ? findCorrespondences(source.special_points, target.special_points, params.correspondence)
-                                  : result.candidates;
+    std::vector<Correspondence> found_pairs;  // only when the corners stopped before pairing
+    if (result.candidates.empty())
+      found_pairs = findCorrespondences(source.special_points, target.special_points, params.correspondence);
+    const std::vector<Correspondence> &pairs = result.candidates.empty() ? found_pairs : result.candidates;
     for (std::size_t k = 0; k < pairs.size() && k < kMaxPairHypotheses; ++k) {
       const Correspondence &c = pairs[k];
       const Eigen::Matrix3d turn = rigidTransform(0.0, 0.0, c.rotation);
@@ -344,9 +346,8 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
                      " % of the source contour lies on the target";
     return;
   }
-  if (refined.degenerate || (params.probe_distance > 0.0 &&
-                              !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner,
-                                           buffers.samples))) {
+  if (refined.degenerate ||
+      !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples)) {
     result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return;
   }
