@@ -28,7 +28,7 @@ struct RefinementParams {
   double min_distance = 0.08;    ///< m, pairing distance it shrinks to
   double sample_step = 0.1;      ///< m, spacing of the source samples along the contour
   double huber = 0.03;           ///< m, Huber threshold of the point-to-line residual
-  double degeneracy_ratio = 0.02;  ///< smallest / largest eigenvalue below this is degenerate
+  double degeneracy_ratio = 0.005;  ///< smallest / largest eigenvalue below this is degenerate: no step along it
   /// The covariance is sigma^2 H^-1 times this. Neighbouring samples share raw points (the
   /// equalization averages them), so their residuals are correlated and sigma^2 H^-1 alone is
   /// too small; 1.7 makes the mean normalised error squared about 3 on simulated rooms
