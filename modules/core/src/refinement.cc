@@ -13,25 +13,28 @@ namespace contour_reg {
 
 namespace {
 
-// Target contour points sorted by bearing, with their segment, for projective search.
+// The target's equalized contour vertices (stage B) sorted by bearing, with their contour, for
+// projective search. The vertices lie on the raw polyline one step apart, however sparse the
+// raw points are (distant walls, 1 deg beams): a source sample between two raw points still
+// finds a partner, and a normal spans the same arc length everywhere.
 struct BearingIndex {
   std::vector<Eigen::Vector2d> points;
-  std::vector<int> segment;
+  std::vector<int> segment;  // the contour of each point
   std::vector<double> bearing;
-  std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (segment, point): kept for the next build
+  std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (contour, vertex): kept for the next build
 
   // Indexes `target`, reusing the buffers of the last build.
   void build(const ContourFeatures &target) {
     order.clear();
-    for (std::size_t k = 0; k < target.segments.size(); ++k)
-      for (std::size_t n = 0; n < target.segments[k].points.size(); ++n)
-        order.push_back({std::arg(target.segments[k].points[n]), {int(k), int(n)}});
+    for (std::size_t k = 0; k < target.contours.size(); ++k)
+      for (std::size_t n = 0; n < target.contours[k].vertices.size(); ++n)
+        order.push_back({std::arg(target.contours[k].vertices[n]), {int(k), int(n)}});
     std::sort(order.begin(), order.end());
     points.clear();
     segment.clear();
     bearing.clear();
     for (const auto &[b, where] : order) {
-      points.push_back(toEigen(target.segments[where.first].points[where.second]));
+      points.push_back(toEigen(target.contours[where.first].vertices[where.second]));
       segment.push_back(where.first);
       bearing.push_back(b);
     }
@@ -61,7 +64,7 @@ struct BearingIndex {
     return best;
   }
 
-  // Unit normal of the target contour at point j, from its neighbours in the same segment.
+  // Unit normal of the target contour at point j, from its neighbours in the same contour.
   bool normalAt(int j, Eigen::Vector2d &normal) const {
     int lo = j, hi = j;
     for (int k = 0; k < 2; ++k) {

@@ -179,6 +179,25 @@ bool settlesBack(const RefinementResult &best, double probe, const RefinementPar
   return true;
 }
 
+// The contours' own answer from the guess (none: no motion), refined from the local
+// fallback's wider pairing distance.
+RefinementResult refineFromGuess(const RegistrationParams &params, const Eigen::Matrix3d *guess,
+                                 const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
+  RefinementParams wide = params.refinement;
+  wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
+  return refiner.refine(samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), wide);
+}
+
+// Whether `best` stands against the motion the contours settle on from the guess: they agree,
+// or that motion fits clearly worse. A few corners along repeated structure (a door every few
+// metres) can match one period off, where the contours fit about as well as at the true motion.
+bool standsAgainstGuess(const RefinementResult &best, const RefinementResult &from_guess) {
+  constexpr double kAgree = 0.2;  // m, or 0.2 rad
+  const double apart = (best.transform.topRightCorner<2, 1>() - from_guess.transform.topRightCorner<2, 1>()).norm() +
+                       std::abs(std::remainder(yawOf(best.transform) - yawOf(from_guess.transform), 2.0 * M_PI));
+  return apart <= kAgree || from_guess.overlap <= best.overlap - kOverlapTie;
+}
+
 // Empties `result`, keeping the buffers of its lists.
 void reset(RegistrationResult &result) {
   std::vector<Correspondence> candidates = std::move(result.candidates);
@@ -304,6 +323,13 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
       return fail(result, RegistrationStatus::kTooFewInliers,
                   "too few inliers: " + std::to_string(inlier_sources.size()) +
                       " special points, and the contours leave a direction weakly constrained");
+    }
+    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) &&
+        !standsAgainstGuess(refined, refineFromGuess(params, guess, buffers.refiner, buffers.samples))) {
+      result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
+      return fail(result, RegistrationStatus::kTooFewInliers,
+                  "too few inliers: " + std::to_string(inlier_sources.size()) +
+                      " special points, and the contours fit a distinct motion from the guess as well");
     }
   }
   result.converged = true;
