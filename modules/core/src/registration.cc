@@ -166,10 +166,13 @@ bool settlesBack(const RefinementResult &best, double probe, const RefinementPar
                  const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
   if (!(probe > 0.0)) return true;
   if (best.weakest_direction.isZero()) return false;
+  // Each probe starts `probe` m off: its first pairing distance reaches that much further.
+  RefinementParams from_probe = params;
+  from_probe.max_distance = params.max_distance + probe;
   const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
   for (const double sign : {1.0, -1.0}) {
     const Eigen::Vector3d off = sign * probe * best.weakest_direction;
-    const RefinementResult r = refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), params);
+    const RefinementResult r = refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe);
     // How far from `best` the probe settled, rotation in metres of arc.
     const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
                                         std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
