@@ -186,6 +186,7 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.8, 0.05, 2), 9, 0.02);
   RegistrationParams unchecked;
   unchecked.probe_max_inliers = 0;
+  unchecked.guess_check_max_inliers = 0;
   std::mt19937 rng(5);
   const RegistrationResult corners_alone = registerContours(source, target, unchecked, rng);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
@@ -208,6 +209,7 @@ TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffGoesToTheFallback) {
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.5, 0.05, 2), 9);
   RegistrationParams unchecked;
   unchecked.probe_max_inliers = 0;
+  unchecked.guess_check_max_inliers = 0;
   std::mt19937 rng(5);
   const RegistrationResult corners_alone = registerContours(source, target, unchecked, rng);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;

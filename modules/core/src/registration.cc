@@ -51,6 +51,10 @@ bool RegistrationParams::validate(std::string *why) const {
     if (why) *why = "probe_distance must be >= 0";
     return false;
   }
+  if (probe_max_inliers < 0 || guess_check_max_inliers < 0) {
+    if (why) *why = "probe_max_inliers and guess_check_max_inliers must be >= 0";
+    return false;
+  }
   if (min_special_points < 2 || min_inliers < 2) {
     if (why) *why = "min_special_points and min_inliers must be >= 2";
     return false;
@@ -327,7 +331,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
                   "too few inliers: " + std::to_string(inlier_sources.size()) +
                       " special points, and the contours leave a direction weakly constrained");
     }
-    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) &&
+    if (inlier_sources.size() <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
         !standsAgainstGuess(refined, refineFromGuess(params, guess, buffers.refiner, buffers.samples))) {
       result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
       return fail(result, RegistrationStatus::kTooFewInliers,

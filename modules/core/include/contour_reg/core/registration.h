@@ -61,6 +61,12 @@ struct RegistrationParams {
   /// same probe (when it is on); one that does not goes to the local fallback. Three corners
   /// along one wall of a corridor fix its axis only as well as they are spread.
   int probe_max_inliers = 3;
+  /// A motion the corners decide with at most this many inlier special points must agree
+  /// with the contours' own answer, the guess (identity without one) refined from
+  /// local_fallback_max_distance, or fit clearly better (5 points more overlap); one that
+  /// does not goes to the local fallback. Corners along repeated structure (a door every few
+  /// metres) or wrongly paired in clutter can agree on a wrong motion. 0 skips this check.
+  int guess_check_max_inliers = 5;
 
   bool validate(std::string *why = nullptr) const;
 };
