@@ -180,24 +180,40 @@ simulation::World corridorWithRecesses(double depth, double door, double period)
 
 TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   // Recesses 0.25 m deep every 4 m, 2 cm range noise, seen from 0.8 m further on: three noisy
-  // door corners agree on a wrong motion, where the shallow recesses leave the axis flat.
+  // door corners agree on a wrong motion, where the shallow recesses leave the axis flat and
+  // little of the contours overlaps.
   const simulation::World corridor = corridorWithRecesses(0.25, 0.6, 4.0);
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8, 0.02);
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.8, 0.05, 2), 9, 0.02);
   RegistrationParams unchecked;
   unchecked.probe_max_inliers = 0;
   unchecked.guess_check_max_inliers = 0;
+  unchecked.corner_min_overlap = 0.0;
   std::mt19937 rng(5);
   const RegistrationResult corners_alone = registerContours(source, target, unchecked, rng);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
   ASSERT_EQ(corners_alone.inliers.size(), 3u);
   EXPECT_GT(std::abs(corners_alone.transform(0, 2) - 0.8), 0.5);  // confidently wrong
 
+  RegistrationParams probed = unchecked;  // the probe alone
+  probed.probe_max_inliers = 3;
   rng.seed(5);
-  const RegistrationResult r = registerContours(source, target, RegistrationParams{}, rng);
-  EXPECT_FALSE(r.converged) << r.transform;
-  EXPECT_NE(r.reason.find("3 special points, and the contours leave a direction weakly constrained"), std::string::npos)
-      << r.reason;
+  const RegistrationResult by_probe = registerContours(source, target, probed, rng);
+  EXPECT_FALSE(by_probe.converged) << by_probe.transform;
+  EXPECT_NE(by_probe.reason.find("3 special points, and the contours leave a direction weakly constrained"),
+            std::string::npos)
+      << by_probe.reason;
+
+  RegistrationParams overlapping = unchecked;  // the overlap alone
+  overlapping.corner_min_overlap = 0.3;
+  rng.seed(5);
+  const RegistrationResult by_overlap = registerContours(source, target, overlapping, rng);
+  EXPECT_FALSE(by_overlap.converged) << by_overlap.transform;
+  EXPECT_NE(by_overlap.reason.find("3 special points agree, but the contours overlap only"), std::string::npos)
+      << by_overlap.reason;
+
+  rng.seed(5);
+  EXPECT_FALSE(registerContours(source, target, RegistrationParams{}, rng).converged);
 }
 
 TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffGoesToTheFallback) {
@@ -210,6 +226,7 @@ TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffGoesToTheFallback) {
   RegistrationParams unchecked;
   unchecked.probe_max_inliers = 0;
   unchecked.guess_check_max_inliers = 0;
+  unchecked.corner_min_overlap = 0.0;
   std::mt19937 rng(5);
   const RegistrationResult corners_alone = registerContours(source, target, unchecked, rng);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;

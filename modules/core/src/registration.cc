@@ -47,6 +47,10 @@ bool RegistrationParams::validate(std::string *why) const {
     if (why) *why = "local_fallback_max_distance must be > 0";
     return false;
   }
+  if (!(corner_min_overlap >= 0.0 && corner_min_overlap <= 1.0)) {
+    if (why) *why = "corner_min_overlap must be in [0, 1]";
+    return false;
+  }
   if (!(probe_distance >= 0.0)) {
     if (why) *why = "probe_distance must be >= 0";
     return false;
@@ -320,6 +324,13 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
       result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
       return fail(result, RegistrationStatus::kTooFewInliers,
                   "too few inliers: 2 special points, and the contours overlap only " +
+                      std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
+    }
+    if (!verify_two && refined.overlap < params.corner_min_overlap) {
+      result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
+      return fail(result, RegistrationStatus::kTooFewInliers,
+                  "too few inliers: " + std::to_string(inlier_sources.size()) +
+                      " special points agree, but the contours overlap only " +
                       std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
     }
     // A few corners, often along one wall, pin the motion no better than they are spread:

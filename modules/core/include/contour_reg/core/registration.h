@@ -33,6 +33,10 @@ struct RegistrationParams {
   /// Two inliers are accepted when, after refinement, at least this fraction of the
   /// source contour lies on the target contour (0 disables).
   double two_inlier_min_overlap = 0.6;
+  /// With the refinement on, a motion of more inliers must put at least this fraction of the
+  /// source contour on the target contour, or it goes to the local fallback: corners paired
+  /// wrongly along cluttered or noisy walls can agree on a motion the contours refute (0 disables).
+  double corner_min_overlap = 0.3;
   double min_inlier_spread = 0.3;  ///< m, the inlier special points must span at least this
   /// With a guess: pairs whose target lies farther than this from the guessed position
   /// of their source point, or whose rotation disagrees with the guess by more than
