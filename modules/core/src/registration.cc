@@ -14,6 +14,13 @@ void fail(RegistrationResult &result, RegistrationStatus status, const std::stri
   result.reason = reason;
 }
 
+// Fails after the refinement moved the transform: it goes back to the guess (identity without one).
+void failAtGuess(RegistrationResult &result, const Eigen::Matrix3d *guess, RegistrationStatus status,
+                 const std::string &reason) {
+  result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
+  fail(result, status, reason);
+}
+
 // Pairs consistent with the guess: target near the guessed source position, rotation near its yaw.
 std::vector<Correspondence> gateByGuess(const std::vector<Correspondence> &pairs, const std::vector<SpecialPoint> &source,
                                         const std::vector<SpecialPoint> &target, const Eigen::Matrix3d &guess,
@@ -99,16 +106,29 @@ const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuff
 // Refined motions whose overlaps differ by less than this fit about as well.
 constexpr double kOverlapTie = 0.05;
 
+// How far apart two motions are: m, with 1 m per rad of turn.
+double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
+  return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
+         std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
+}
+
+// Motions farther apart than this (motionDistance) are distinct answers.
+constexpr double kDistinctMotions = 0.2;
+
+// The refinement settings for a start that may be far off (the guess): pairing begins at
+// local_fallback_max_distance.
+RefinementParams widened(const RegistrationParams &params) {
+  RefinementParams wide = params.refinement;
+  wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
+  return wide;
+}
+
 // The best overlap wins; where overlaps tie, the motion nearest the guess (no motion
 // without one) wins. Many starts are first screened by a short, sparse refinement; the
 // most promising few are refined in full.
 BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &target,
                           std::vector<RefinementStart> &starts, const Eigen::Matrix3d *guess,
                           RegistrationBuffers &buffers) {
-  auto distance = [](const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {  // m, with 1 m per rad of turn
-    return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
-           std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
-  };
   const ContourRefiner &refiner = refinerFor(target, buffers);
   // The starts share their sample spacing: the source is sampled once for the full
   // refinements and once, twice as sparse, for the screening.
@@ -136,7 +156,7 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
     std::vector<const Screened *> chosen;
     for (const Screened &s : screened) {
       if (chosen.size() == kRefinedInFull) break;
-      if (std::none_of(chosen.begin(), chosen.end(), [&](const Screened *c) { return distance(c->motion, s.motion) < 0.1; }))
+      if (std::none_of(chosen.begin(), chosen.end(), [&](const Screened *c) { return motionDistance(c->motion, s.motion) < 0.1; }))
         chosen.push_back(&s);
     }
     std::vector<RefinementStart> kept;
@@ -151,12 +171,11 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
   for (const RefinementResult &r : refined) {
     const bool better = r.overlap > result.best.overlap + kOverlapTie ||
                         (r.overlap > result.best.overlap - kOverlapTie &&
-                         distance(r.transform, prior) < distance(result.best.transform, prior));
+                         motionDistance(r.transform, prior) < motionDistance(result.best.transform, prior));
     if (better) result.best = r;
   }
-  constexpr double kDistinct = 0.2;  // m, or 0.2 rad
   for (const RefinementResult &r : refined)
-    if (r.overlap > result.best.overlap - kOverlapTie && distance(r.transform, result.best.transform) > kDistinct)
+    if (r.overlap > result.best.overlap - kOverlapTie && motionDistance(r.transform, result.best.transform) > kDistinctMotions)
       result.ambiguous = true;
   return result;
 }
@@ -190,23 +209,18 @@ bool settlesBack(const RefinementResult &best, double probe, const RefinementPar
   return true;
 }
 
-// The contours' own answer from the guess (none: no motion), refined from the local
-// fallback's wider pairing distance.
+// The contours' own answer: the guess (none: no motion) refined from the wider pairing distance.
 RefinementResult refineFromGuess(const RegistrationParams &params, const Eigen::Matrix3d *guess,
                                  const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
-  RefinementParams wide = params.refinement;
-  wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
-  return refiner.refine(samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), wide);
+  return refiner.refine(samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params));
 }
 
 // Whether `best` stands against the motion the contours settle on from the guess: they agree,
 // or that motion fits clearly worse. A few corners along repeated structure (a door every few
 // metres) can match one period off, where the contours fit about as well as at the true motion.
 bool standsAgainstGuess(const RefinementResult &best, const RefinementResult &from_guess) {
-  constexpr double kAgree = 0.2;  // m, or 0.2 rad
-  const double apart = (best.transform.topRightCorner<2, 1>() - from_guess.transform.topRightCorner<2, 1>()).norm() +
-                       std::abs(std::remainder(yawOf(best.transform) - yawOf(from_guess.transform), 2.0 * M_PI));
-  return apart <= kAgree || from_guess.overlap <= best.overlap - kOverlapTie;
+  return motionDistance(best.transform, from_guess.transform) <= kDistinctMotions ||
+         from_guess.overlap <= best.overlap - kOverlapTie;
 }
 
 // Empties `result`, keeping the buffers of its lists.
@@ -321,14 +335,12 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     result.degenerate = refined.degenerate && inlier_sources.size() < 3;
     result.transform = refined.transform;
     if (verify_two && refined.overlap < params.two_inlier_min_overlap) {
-      result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
-      return fail(result, RegistrationStatus::kTooFewInliers,
+      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                   "too few inliers: 2 special points, and the contours overlap only " +
                       std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
     }
     if (!verify_two && refined.overlap < params.corner_min_overlap) {
-      result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
-      return fail(result, RegistrationStatus::kTooFewInliers,
+      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                   "too few inliers: " + std::to_string(inlier_sources.size()) +
                       " special points agree, but the contours overlap only " +
                       std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
@@ -337,15 +349,13 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     // the contours must pin it too.
     if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) &&
         !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples)) {
-      result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
-      return fail(result, RegistrationStatus::kTooFewInliers,
+      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                   "too few inliers: " + std::to_string(inlier_sources.size()) +
                       " special points, and the contours leave a direction weakly constrained");
     }
     if (inlier_sources.size() <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
         !standsAgainstGuess(refined, refineFromGuess(params, guess, buffers.refiner, buffers.samples))) {
-      result.transform = guess ? *guess : Eigen::Matrix3d::Identity();
-      return fail(result, RegistrationStatus::kTooFewInliers,
+      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                   "too few inliers: " + std::to_string(inlier_sources.size()) +
                       " special points, and the contours fit a distinct motion from the guess as well");
     }
@@ -361,8 +371,7 @@ constexpr std::size_t kMaxPairHypotheses = 8;
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                       const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, RegistrationResult &result) {
   // The guess may be far off: it is refined from a wider pairing distance.
-  RefinementParams wide = params.refinement;
-  wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
+  const RefinementParams wide = widened(params);
   std::vector<RefinementStart> starts{{guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), &wide}};
   // Each candidate pair of corners is a full hypothesis on its own: the rotation arg (N, G)
   // of eq. (14) and the translation that brings the two corners together.
