@@ -178,6 +178,21 @@ simulation::World corridorWithRecesses(double depth, double door, double period)
   return corridor;
 }
 
+// Registration settings without the checks of motions of few corners.
+RegistrationParams withoutCornerChecks() {
+  RegistrationParams params;
+  params.probe_max_inliers = 0;
+  params.guess_check_max_inliers = 0;
+  params.corner_min_overlap = 0.0;
+  return params;
+}
+
+RegistrationResult registerSeeded(const ContourFeatures &source, const ContourFeatures &target,
+                                  const RegistrationParams &params) {
+  std::mt19937 rng(5);
+  return registerContours(source, target, params, rng);
+}
+
 TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   // Recesses 0.25 m deep every 4 m, 2 cm range noise, seen from 0.8 m further on: three noisy
   // door corners agree on a wrong motion, where the shallow recesses leave the axis flat and
@@ -185,56 +200,42 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   const simulation::World corridor = corridorWithRecesses(0.25, 0.6, 4.0);
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8, 0.02);
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.8, 0.05, 2), 9, 0.02);
-  RegistrationParams unchecked;
-  unchecked.probe_max_inliers = 0;
-  unchecked.guess_check_max_inliers = 0;
-  unchecked.corner_min_overlap = 0.0;
-  std::mt19937 rng(5);
-  const RegistrationResult corners_alone = registerContours(source, target, unchecked, rng);
+  const RegistrationResult corners_alone = registerSeeded(source, target, withoutCornerChecks());
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
   ASSERT_EQ(corners_alone.inliers.size(), 3u);
   EXPECT_GT(std::abs(corners_alone.transform(0, 2) - 0.8), 0.5);  // confidently wrong
 
-  RegistrationParams probed = unchecked;  // the probe alone
+  RegistrationParams probed = withoutCornerChecks();  // the probe alone
   probed.probe_max_inliers = 3;
-  rng.seed(5);
-  const RegistrationResult by_probe = registerContours(source, target, probed, rng);
+  const RegistrationResult by_probe = registerSeeded(source, target, probed);
   EXPECT_FALSE(by_probe.converged) << by_probe.transform;
   EXPECT_NE(by_probe.reason.find("3 special points, and the contours leave a direction weakly constrained"),
             std::string::npos)
       << by_probe.reason;
 
-  RegistrationParams overlapping = unchecked;  // the overlap alone
+  RegistrationParams overlapping = withoutCornerChecks();  // the overlap alone
   overlapping.corner_min_overlap = 0.3;
-  rng.seed(5);
-  const RegistrationResult by_overlap = registerContours(source, target, overlapping, rng);
+  const RegistrationResult by_overlap = registerSeeded(source, target, overlapping);
   EXPECT_FALSE(by_overlap.converged) << by_overlap.transform;
   EXPECT_NE(by_overlap.reason.find("3 special points agree, but the contours overlap only"), std::string::npos)
       << by_overlap.reason;
 
-  rng.seed(5);
-  EXPECT_FALSE(registerContours(source, target, RegistrationParams{}, rng).converged);
+  EXPECT_FALSE(registerSeeded(source, target, RegistrationParams{}).converged);
 }
 
 TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffGoesToTheFallback) {
   // Recesses 0.2 m deep every 3 m, seen from 0.5 m further on: three door corners match one
-  // period off, where the contours fit about as well as at the true motion; refined from the
-  // guess, the contours settle on that one instead, and the local fallback decides.
+  // period off. Refined from the guess (none), the contours settle on the true motion and fit
+  // it at least as well, so the local fallback decides.
   const simulation::World corridor = corridorWithRecesses(0.2, 0.9, 3.0);
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.5, 0.05, 2), 9);
-  RegistrationParams unchecked;
-  unchecked.probe_max_inliers = 0;
-  unchecked.guess_check_max_inliers = 0;
-  unchecked.corner_min_overlap = 0.0;
-  std::mt19937 rng(5);
-  const RegistrationResult corners_alone = registerContours(source, target, unchecked, rng);
+  const RegistrationResult corners_alone = registerSeeded(source, target, withoutCornerChecks());
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
   ASSERT_EQ(corners_alone.inliers.size(), 3u);
   EXPECT_NEAR(corners_alone.transform(0, 2), 0.5 - 3.0, 0.03);
 
-  rng.seed(5);
-  const RegistrationResult r = registerContours(source, target, RegistrationParams{}, rng);
+  const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_TRUE(r.from_local_fallback);
   EXPECT_NEAR(r.transform(0, 2), 0.5, 0.03);
