@@ -1,0 +1,65 @@
+// The point-to-line refinement on the contours: it pairs with the target's equalized
+// vertices, so sparse beams still pair, and it pulls a nearby start onto the true motion.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/refinement.h"
+#include "contour_reg/core/transform_estimation.h"
+#include "scenes.h"
+
+namespace contour_reg {
+namespace {
+
+// A 180-beam LIDAR over 180 deg (1 deg apart), as in older SICK logs: at 10 m its beams hit a
+// wall 17 cm apart, more than the refinement's final pairing distance (8 cm).
+simulation::LidarModel sparseLidar() {
+  simulation::LidarModel model;
+  model.beams = 181;
+  model.field_of_view = M_PI;
+  model.range_max = 30.0;
+  model.range_noise = 0.01;
+  return model;
+}
+
+ContourFeatures sparseFeatures(const simulation::World &world, const Eigen::Isometry2d &pose, unsigned seed) {
+  std::mt19937 rng(seed);
+  return extractContourFeatures(simulation::simulateScan(world, pose, sparseLidar(), rng), ContourParams{});
+}
+
+Eigen::Matrix3d matrixOf(const Eigen::Isometry2d &pose) { return pose.matrix(); }
+
+TEST(Refinement, SparseBeamsOnDistantWallsPairAtTheTrueMotion) {
+  simulation::World hall;  // 24 m x 16 m, the sensor near its middle: walls 7-12 m away
+  hall.addBox({-12.0, -8.0}, {12.0, 8.0});
+  hall.addBox({3.0, 2.0}, {4.0, 3.0});
+  const Eigen::Isometry2d motion = test::pose2d(0.3, 0.1, 2);
+  const ContourFeatures target = sparseFeatures(hall, test::pose2d(0, 0, 0), 1);
+  const ContourFeatures source = sparseFeatures(hall, motion, 2);
+  const RefinementResult r = refineOnContours(source, target, matrixOf(motion), RefinementParams{});
+  // Samples that lie between two sparse raw points of the target still find their partner.
+  EXPECT_GT(r.overlap, 0.9);
+  EXPECT_NEAR(r.transform(0, 2), 0.3, 0.02);
+  EXPECT_NEAR(r.transform(1, 2), 0.1, 0.02);
+  EXPECT_NEAR(yawOf(r.transform), 2.0 * M_PI / 180.0, 0.2 * M_PI / 180.0);
+}
+
+TEST(Refinement, PullsANearbyStartOntoTheTrueMotion) {
+  const test::RoomWithBoxes room;
+  const Eigen::Isometry2d motion = test::pose2d(0.4, -0.2, 5);
+  const ContourFeatures target =
+      extractContourFeatures(test::scanFrom(room.world, test::pose2d(0, 0, 0), 0.01, 3), ContourParams{});
+  const ContourFeatures source = extractContourFeatures(test::scanFrom(room.world, motion, 0.01, 4), ContourParams{});
+  const RefinementResult r =
+      refineOnContours(source, target, matrixOf(test::pose2d(0.5, -0.05, 7)), RefinementParams{});
+  EXPECT_GT(r.overlap, 0.9);
+  EXPECT_FALSE(r.degenerate);
+  EXPECT_NEAR(r.transform(0, 2), 0.4, 0.01);
+  EXPECT_NEAR(r.transform(1, 2), -0.2, 0.01);
+  EXPECT_NEAR(yawOf(r.transform), 5.0 * M_PI / 180.0, 0.2 * M_PI / 180.0);
+}
+
+}  // namespace
+}  // namespace contour_reg
