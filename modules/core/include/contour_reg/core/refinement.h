@@ -31,9 +31,9 @@ struct RefinementParams {
   double degeneracy_ratio = 0.005;  ///< smallest / largest eigenvalue below this is degenerate: no step along it
   /// The covariance is sigma^2 H^-1 times this. Neighbouring samples share raw points (the
   /// equalization averages them), so their residuals are correlated and sigma^2 H^-1 alone is
-  /// too small; 1.7 makes the mean normalised error squared about 3 on simulated rooms
+  /// too small; 1.25 makes the mean normalised error squared about 3 on simulated rooms
   /// (tests/core/degeneracy_test.cc).
-  double covariance_scale = 1.7;
+  double covariance_scale = 1.25;
 
   bool validate(std::string *why = nullptr) const;
 };
