@@ -32,7 +32,7 @@ ContourFeatures sparseFeatures(const simulation::World &world, const Eigen::Isom
 Eigen::Matrix3d matrixOf(const Eigen::Isometry2d &pose) { return pose.matrix(); }
 
 TEST(Refinement, SparseBeamsOnDistantWallsPairAtTheTrueMotion) {
-  simulation::World hall;  // 24 m x 16 m, the sensor near its middle: walls 7-12 m away
+  simulation::World hall;  // 24 m x 16 m, the sensor at its middle: walls 8-12 m away
   hall.addBox({-12.0, -8.0}, {12.0, 8.0});
   hall.addBox({3.0, 2.0}, {4.0, 3.0});
   const Eigen::Isometry2d motion = test::pose2d(0.3, 0.1, 2);
