@@ -24,9 +24,12 @@ namespace contour_reg {
 /// and when the new target is the previous source cloud (odometry: each scan against the
 /// previous one) its features are reused.
 ///
-/// The initial guess of align(output, guess): by default the match needs none (the
-/// fragment distance is rotation invariant); the guess is then only the answer reported
-/// when registration fails. With setGuessGate(d > 0), pairs whose target lies more than
+/// The initial guess of align(output, guess): the corner match needs none (the fragment
+/// distance is rotation invariant). The guess is refined on the contours where the corners
+/// alone cannot decide: it is the first start of the local fallback, a motion of at most
+/// five corners must agree with its refinement or fit clearly better, and of two motions
+/// that fit equally well the one nearer the guess wins. It is the answer reported when
+/// registration fails. With setGuessGate(d > 0), pairs whose target lies more than
 /// d metres from the guessed position of their source point (or whose rotation disagrees
 /// with the guess) are dropped. With the paper's rotation-dependent fragment distance
 /// (FragmentDistance::kReal), the source fragments are first turned by the guess's yaw.
