@@ -331,34 +331,28 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
     result.covariance = refined.covariance;
+    const std::size_t corners = inlier_sources.size();
     // Three corners or more pin every direction; fewer leave it to the contours.
-    result.degenerate = refined.degenerate && inlier_sources.size() < 3;
+    result.degenerate = refined.degenerate && corners < 3;
     result.transform = refined.transform;
-    if (verify_two && refined.overlap < params.two_inlier_min_overlap) {
-      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
-                  "too few inliers: 2 special points, and the contours overlap only " +
-                      std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
-    }
-    if (!verify_two && refined.overlap < params.corner_min_overlap) {
-      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
-                  "too few inliers: " + std::to_string(inlier_sources.size()) +
-                      " special points agree, but the contours overlap only " +
-                      std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
-    }
+    // The contours must confirm what the corners agree on; a motion they do not confirm goes
+    // back to the guess, and the local fallback decides.
+    auto decline = [&](const std::string &why) {
+      failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
+                  "too few inliers: " + std::to_string(corners) + " special points" + why);
+    };
+    // Two corners need a large overlap, more a modest one.
+    if (refined.overlap < (verify_two ? params.two_inlier_min_overlap : params.corner_min_overlap))
+      return decline(" agree, but the contours overlap only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+                     " % after alignment");
     // A few corners, often along one wall, pin the motion no better than they are spread:
     // the contours must pin it too.
-    if (inlier_sources.size() <= static_cast<std::size_t>(params.probe_max_inliers) &&
-        !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples)) {
-      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
-                  "too few inliers: " + std::to_string(inlier_sources.size()) +
-                      " special points, and the contours leave a direction weakly constrained");
-    }
-    if (inlier_sources.size() <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
-        !standsAgainstGuess(refined, refineFromGuess(params, guess, buffers.refiner, buffers.samples))) {
-      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
-                  "too few inliers: " + std::to_string(inlier_sources.size()) +
-                      " special points, and the contours fit a distinct motion from the guess as well");
-    }
+    if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&
+        !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples))
+      return decline(", and the contours leave a direction weakly constrained");
+    if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
+        !standsAgainstGuess(refined, refineFromGuess(params, guess, buffers.refiner, buffers.samples)))
+      return decline(", and the contours fit a distinct motion from the guess as well");
   }
   result.converged = true;
   result.status = RegistrationStatus::kConverged;

@@ -15,6 +15,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/types.h>
 
+#include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/special_points.h"
 #include "contour_reg/core/types.h"
 #include "contour_reg/point_types.h"
@@ -49,6 +50,16 @@ ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const p
   ComplexSequence code;
   polarCodeFromCloud(cloud, code, indices);
   return code;
+}
+
+/// Stages A-C on a cloud (or on the points named by `indices`) into `features`; the polar
+/// code goes into the features' own buffer, so a warm `features` allocates nothing.
+template <typename PointT>
+void extractContourFeatures(const pcl::PointCloud<PointT> &cloud, const ContourParams &params, ContourFeatures &features,
+                            const pcl::Indices *indices = nullptr) {
+  ComplexSequence &code = features.buffers.polar_code;  // the extraction reads it, never writes it
+  polarCodeFromCloud(cloud, code, indices);
+  extractContourFeatures(code, params, features);
 }
 
 /// Fills a PCL special point from a core special point.

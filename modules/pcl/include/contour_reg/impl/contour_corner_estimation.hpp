@@ -30,8 +30,7 @@ bool ContourCornerEstimation<PointInT, PointOutT>::initCompute() {
 template <typename PointInT, typename PointOutT>
 void ContourCornerEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut &output) {
   const bool all_points = indices_->size() == input_->size();
-  const ComplexSequence code = polarCodeFromCloud(*input_, all_points ? nullptr : indices_.get());
-  extractContourFeatures(code, params_, features_);
+  extractContourFeatures(*input_, params_, features_, all_points ? nullptr : indices_.get());
   output.resize(features_.special_points.size());
   for (std::size_t k = 0; k < features_.special_points.size(); ++k)
     output[k] = toContourCorner(features_.special_points[k]);

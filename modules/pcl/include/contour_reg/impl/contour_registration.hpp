@@ -90,16 +90,12 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     return;
   }
   if (!source_ready_) {
-    ComplexSequence &code = source_features_.buffers.polar_code;  // the extraction reads it, never writes it
-    polarCodeFromCloud(*input_, code);
-    extractContourFeatures(code, contour_params_, source_features_);
+    extractContourFeatures(*input_, contour_params_, source_features_);
     source_cloud_ = input_.get();
     source_ready_ = true;
   }
   if (!target_ready_) {
-    ComplexSequence &code = target_features_.buffers.polar_code;
-    polarCodeFromCloud(*target_, code);
-    extractContourFeatures(code, contour_params_, target_features_);
+    extractContourFeatures(*target_, contour_params_, target_features_);
     target_ready_ = true;
   }
 
