@@ -5,8 +5,9 @@
 /// The corner vertices fix the transform to about a centimetre; the contours carry far
 /// more evidence. Starting from the RANSAC estimate, equalized source vertices are paired
 /// with the nearest equalized target vertex found by bearing (projective search, as in
-/// PL-ICP; the vertices lie one step apart on the raw polyline however sparse the beams) and the point-to-line distances are minimized by Gauss-Newton with Huber
-/// weights, the pairing distance shrinking each iteration. The update moves the pose only
+/// PL-ICP; the vertices lie one step apart on the raw polyline however sparse the beams),
+/// and the point-to-line distances are minimized by Gauss-Newton with Huber weights, the
+/// pairing distance shrinking each iteration. The update moves the pose only
 /// along directions the contours constrain: where the information matrix is degenerate
 /// (a corridor constrains nothing along its axis) the corner estimate is kept. The
 /// information matrix also gives the covariance of the estimate.
