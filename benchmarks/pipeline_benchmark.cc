@@ -1,5 +1,6 @@
 // Per-stage and end-to-end cost of the contour pipeline, and PCL's ICP, NDT2D and NDT on
 // the same scan pairs, at 360, 720 and 1081 beams.
+#include <cstdint>
 #include <random>
 
 #include <benchmark/benchmark.h>
@@ -153,11 +154,15 @@ void BM_PairIcp(benchmark::State &state) { runPair(state, "icp"); }
 void BM_PairNdt2d(benchmark::State &state) { runPair(state, "ndt2d"); }
 void BM_PairNdt(benchmark::State &state) { runPair(state, "ndt"); }
 
+// How many extractions of stages A-C have run in this process so far (each takes the next number).
+std::uint64_t extractionsSoFar() { return extractContourFeatures(ComplexSequence{}, kParams).extraction - 1; }
+
 // Odometry's steady state: the previous source is the new target, its features reused.
 void BM_OdometryStepContour(benchmark::State &state) {
   const ScanPair pair = scanPair(int(state.range(0)));
   auto matcher = odometry::makeScanMatcher("contour");
   std::vector<LaserScan> scans{pair.target, pair.source};
+  const std::uint64_t extractions = extractionsSoFar();
   std::size_t k = 0, allocations = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -172,6 +177,9 @@ void BM_OdometryStepContour(benchmark::State &state) {
     ++k;
   }
   state.counters["allocations"] = double(allocations) / double(state.iterations());
+  // One per step: the new scan's; the target's features come from the step before (the
+  // first step reads both scans, and the count itself is one more).
+  state.counters["extractions"] = double(extractionsSoFar() - extractions - 2) / double(state.iterations());
 }
 
 // The same steady state on the core API: each new scan's features are extracted into the

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <cstdint>
 
 #include <gtest/gtest.h>
 #include <pcl/console/print.h>
@@ -80,6 +81,25 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhenItIsTheGuess) {
   const io::Pose2D error = io::between(io::between(s.truth[0].pose, s.truth[4].pose),
                                        io::between(run.trajectory[0].pose, run.trajectory[4].pose));
   EXPECT_LT(std::hypot(error.x, error.y), 0.02);
+}
+
+// How many extractions of stages A-C have run in this process so far (each takes the next number).
+std::uint64_t extractionsSoFar() {
+  return extractContourFeatures(ComplexSequence{}, ContourParams{}).extraction - 1;
+}
+
+// Odometry reads each scan once: the last source serves as the next target with its features.
+TEST(Odometry, ExtractsEachScansFeaturesOnce) {
+  const Sequence s = roomSequence(12);
+  for (const std::string method : {"contour", "contour+icp"}) {
+    SCOPED_TRACE(method);
+    auto matcher = makeScanMatcher(method);
+    const std::uint64_t before = extractionsSoFar();
+    const OdometryRun run = runOdometry(s.log, *matcher);  // every scan against the one before
+    const std::uint64_t extractions = extractionsSoFar() - before - 1;  // less the count's own
+    EXPECT_EQ(run.stats.failures, 0u);
+    EXPECT_EQ(extractions, s.log.entries.size());
+  }
 }
 
 TEST(ScanMatcher, EveryMethodRegistersAPairOfTheRoom) {

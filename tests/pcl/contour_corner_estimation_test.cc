@@ -21,7 +21,14 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr toCloud(const LaserScan &scan) {
   return cloud;
 }
 
-TEST(ContourCornerEstimation, GivesTheSameAnswerAsTheCore) {
+bool isNoCorner(const ContourCorner &c) {
+  return std::isnan(c.x) && std::isnan(c.y) && std::isnan(c.z) && std::isnan(c.corner_angle) &&
+         std::isnan(c.response) && std::isnan(c.fragment[0]) && std::isnan(c.fragment[31]);
+}
+
+// pcl::Feature's contract: one output point per input point; the point nearest each corner
+// carries it, every other point is NaN.
+TEST(ContourCornerEstimation, GivesOneOutputPerInputPointWithTheCoresCorners) {
   const test::RoomWithBoxes room;
   const LaserScan scan = test::scanFrom(room.world, test::pose2d(0.2, 0.1, 10), 0.01);
   const auto cloud = toCloud(scan);
@@ -29,25 +36,35 @@ TEST(ContourCornerEstimation, GivesTheSameAnswerAsTheCore) {
   estimation.setInputCloud(cloud);
   pcl::PointCloud<ContourCorner> corners;
   estimation.compute(corners);
+  ASSERT_EQ(corners.size(), cloud->size());
+  EXPECT_EQ(corners.width, corners.size());
+  EXPECT_FALSE(corners.is_dense);
 
   // The core on the cloud's own (float) coordinates.
   const ContourFeatures expected = extractContourFeatures(polarCodeFromCloud(*cloud), ContourParams{});
-  ASSERT_EQ(corners.size(), expected.special_points.size());
-  ASSERT_GE(corners.size(), room.visibleCorners(test::pose2d(0.2, 0.1, 10)).size());
-  EXPECT_EQ(corners.width, corners.size());
-  EXPECT_TRUE(corners.is_dense);
-  for (std::size_t k = 0; k < corners.size(); ++k) {
+  const pcl::Indices &indices = estimation.getCornerIndices();
+  ASSERT_EQ(indices.size(), expected.special_points.size());
+  ASSERT_GE(indices.size(), room.visibleCorners(test::pose2d(0.2, 0.1, 10)).size());
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    SCOPED_TRACE(k);
     const SpecialPoint &p = expected.special_points[k];
-    EXPECT_FLOAT_EQ(corners[k].x, float(p.position.x()));
-    EXPECT_FLOAT_EQ(corners[k].y, float(p.position.y()));
-    EXPECT_FLOAT_EQ(corners[k].corner_angle, float(p.corner_angle));
-    EXPECT_FLOAT_EQ(corners[k].orientation, float(p.orientation));
-    EXPECT_FLOAT_EQ(corners[k].response, float(p.response));
-    EXPECT_EQ(corners[k].turn, float(p.turn));
-    EXPECT_FLOAT_EQ(corners[k].fragment[0], float(p.fragment[0].real()));
-    EXPECT_FLOAT_EQ(corners[k].fragment[31], float(p.fragment[15].imag()));
+    ASSERT_GE(indices[k], 0);
+    const ContourCorner &c = corners[static_cast<std::size_t>(indices[k])];
+    // The carrying point is the scan point nearest the vertex: within a beam's spacing.
+    const pcl::PointXYZ &raw = (*cloud)[static_cast<std::size_t>(indices[k])];
+    EXPECT_LT((Eigen::Vector2d(raw.x, raw.y) - p.position).norm(), 0.06);
+    EXPECT_FLOAT_EQ(c.x, float(p.position.x()));
+    EXPECT_FLOAT_EQ(c.y, float(p.position.y()));
+    EXPECT_FLOAT_EQ(c.corner_angle, float(p.corner_angle));
+    EXPECT_FLOAT_EQ(c.orientation, float(p.orientation));
+    EXPECT_FLOAT_EQ(c.response, float(p.response));
+    EXPECT_EQ(c.turn, float(p.turn));
+    EXPECT_FLOAT_EQ(c.fragment[0], float(p.fragment[0].real()));
+    EXPECT_FLOAT_EQ(c.fragment[31], float(p.fragment[15].imag()));
   }
-  EXPECT_EQ(estimation.getContourFeatures().special_points.size(), corners.size());
+  const auto carrying = std::count_if(corners.begin(), corners.end(), [](const ContourCorner &c) { return !isNoCorner(c); });
+  EXPECT_EQ(static_cast<std::size_t>(carrying), indices.size());  // and every other point is NaN in every field
+  EXPECT_EQ(estimation.getContourFeatures().special_points.size(), indices.size());
 }
 
 TEST(ContourCornerEstimation, WorksForPointXYZIAndShuffledDenseClouds) {
@@ -69,11 +86,51 @@ TEST(ContourCornerEstimation, WorksForPointXYZIAndShuffledDenseClouds) {
   estimation.setInputCloud(shuffled);
   pcl::PointCloud<ContourCorner> corners;
   estimation.compute(corners);
+  ASSERT_EQ(corners.size(), shuffled->size());
   for (const Eigen::Vector2d &corner : room.visibleCorners(test::pose2d(0, 0, 0))) {
     const bool seen = std::any_of(corners.begin(), corners.end(), [&](const ContourCorner &c) {
       return (Eigen::Vector2d(c.x, c.y) - corner).norm() < 0.02;
     });
     EXPECT_TRUE(seen) << corner.transpose();
+  }
+  // Sorting by bearing does not lose track of which input point carries a corner.
+  for (const int index : estimation.getCornerIndices()) {
+    const auto k = static_cast<std::size_t>(index);
+    EXPECT_LT((Eigen::Vector2d((*shuffled)[k].x, (*shuffled)[k].y) - Eigen::Vector2d(corners[k].x, corners[k].y)).norm(),
+              0.06);
+  }
+}
+
+TEST(ContourCornerEstimation, IndicesSelectTheOutputPointsAndOtherPointTypesGetTheSharedFields) {
+  const test::RoomWithBoxes room;
+  const auto cloud = toCloud(test::scanFrom(room.world, test::pose2d(0, 0, 0)));
+  auto half = pcl::make_shared<pcl::Indices>();
+  for (std::size_t n = 0; n < cloud->size() / 2; ++n) half->push_back(static_cast<int>(n));
+
+  ContourCornerEstimation<pcl::PointXYZ> estimation;
+  estimation.setInputCloud(cloud);
+  estimation.setIndices(half);
+  pcl::PointCloud<ContourCorner> corners;
+  estimation.compute(corners);
+  ASSERT_EQ(corners.size(), half->size());
+  ASSERT_FALSE(estimation.getCornerIndices().empty());
+  for (const int index : estimation.getCornerIndices()) EXPECT_LT(static_cast<std::size_t>(index), half->size());
+
+  // The same corners as a plain pcl::PointXYZ cloud: the vertex only.
+  ContourCornerEstimation<pcl::PointXYZ, pcl::PointXYZ> vertices;
+  vertices.setInputCloud(cloud);
+  vertices.setIndices(half);
+  pcl::PointCloud<pcl::PointXYZ> out;
+  vertices.compute(out);
+  ASSERT_EQ(out.size(), half->size());
+  EXPECT_EQ(vertices.getCornerIndices(), estimation.getCornerIndices());
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (std::isnan(corners[k].x)) {
+      EXPECT_TRUE(std::isnan(out[k].x));
+    } else {
+      EXPECT_EQ(out[k].x, corners[k].x);
+      EXPECT_EQ(out[k].y, corners[k].y);
+    }
   }
 }
 
@@ -97,7 +154,7 @@ TEST(CloudConversions, BearingOrderAllowsOneWrapAround) {
   EXPECT_TRUE(isInBearingOrder({}));
 }
 
-TEST(ContourCornerEstimation, EmptyAndInvalidInputGiveEmptyOutput) {
+TEST(ContourCornerEstimation, EmptyInvalidAndCornerlessInputGiveNoCorner) {
   ContourCornerEstimation<pcl::PointXYZ> estimation;
   pcl::PointCloud<ContourCorner> corners;
   auto empty = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
@@ -111,7 +168,9 @@ TEST(ContourCornerEstimation, EmptyAndInvalidInputGiveEmptyOutput) {
   all_nan->is_dense = false;
   estimation.setInputCloud(all_nan);
   estimation.compute(corners);
-  EXPECT_TRUE(corners.empty());
+  ASSERT_EQ(corners.size(), all_nan->size());
+  EXPECT_TRUE(std::all_of(corners.begin(), corners.end(), isNoCorner));
+  EXPECT_TRUE(estimation.getCornerIndices().empty());
 
   // Misuse is reported the PCL way: an error and an empty output.
   const auto verbosity = pcl::console::getVerbosityLevel();

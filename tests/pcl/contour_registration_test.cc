@@ -1,6 +1,8 @@
 #include "contour_reg/contour_registration.h"
 
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -114,28 +116,91 @@ TEST(ContourRegistration, StandsWhereIcpAndNdtStand) {
   }
 }
 
-TEST(ContourRegistration, ReusesThePreviousSourceAsTarget) {
+// The odometry step: swap, set the next scan as source, align. Each scan's special points
+// are extracted once: the target's are those extracted from it as the source of the step before.
+TEST(ContourRegistration, SwapReusesTheLastSourcesFeaturesAsTarget) {
   const simulation::World world = simulation::makeFurnishedRoom();
   ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  Cloud::Ptr previous = toCloud(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1));
-  for (int k = 1; k <= 3; ++k) {
-    const Cloud::Ptr current = toCloud(test::scanFrom(world, test::pose2d(0.2 * k, 0.05 * k, 3 * k), 0.01, 1 + k));
-    registration.setInputTarget(previous);
-    registration.setInputSource(current);
+  registration.setInputSource(toCloud(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1)));
+  std::uint64_t last_source_extraction = 0, last_extraction = 0;
+  for (int k = 1; k <= 4; ++k) {
+    SCOPED_TRACE(k);
+    registration.swapSourceAndTarget();
+    registration.setInputSource(toCloud(test::scanFrom(world, test::pose2d(0.2 * k, 0.05 * k, 3 * k), 0.01, 1 + k)));
     Cloud aligned;
     registration.align(aligned);
-    ASSERT_TRUE(registration.hasConverged());
+    if (k > 1) {  // the first target had not been aligned as a source: this align() read it
+      EXPECT_EQ(registration.getTargetFeatures().extraction, last_source_extraction);
+      EXPECT_EQ(registration.getSourceFeatures().extraction, last_extraction + 1);  // one extraction a step
+    }
+    ASSERT_TRUE(registration.hasConverged()) << registration.getFailureReason();
     const Eigen::Matrix4f t = registration.getFinalTransformation();
     const Eigen::Isometry2d truth = test::pose2d(0.2 * (k - 1), 0.05 * (k - 1), 3 * (k - 1)).inverse() *
                                     test::pose2d(0.2 * k, 0.05 * k, 3 * k);
     EXPECT_LT((t.block<2, 1>(0, 3).cast<double>() - truth.translation()).norm(), 0.02);
-    // The target's special points are those the previous align() found in this cloud.
-    if (k > 1) {
-      EXPECT_EQ(registration.getTargetFeatures().special_points.size(),
-                extractContourFeatures(polarCodeFromCloud(*previous), ContourParams{}).special_points.size());
-    }
-    previous = current;
+    last_source_extraction = registration.getSourceFeatures().extraction;
+    last_extraction = std::max(last_source_extraction, registration.getTargetFeatures().extraction);
   }
+}
+
+// PCL's own setters drive the settings they name.
+TEST(ContourRegistration, PclSettersDriveTheSettingsTheyName) {
+  const ScanPair pair;
+  using Contour = ContourRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+  const auto run = [&](const std::function<void(Contour &)> &configure) {
+    auto registration = pcl::make_shared<Contour>();
+    configure(*registration);
+    registration->setInputSource(pair.source);
+    registration->setInputTarget(pair.target);
+    Cloud aligned;
+    registration->align(aligned);
+    return registration;
+  };
+  const auto defaults = run([](Contour &) {});
+  ASSERT_TRUE(defaults->hasConverged());
+  EXPECT_EQ(defaults->getRegistrationParams().ransac.max_iterations, RegistrationParams{}.ransac.max_iterations);
+
+  // RANSAC iterations: one hypothesis only.
+  const auto one_hypothesis = run([](Contour &r) { r.setRANSACIterations(1); });
+  EXPECT_EQ(one_hypothesis->getResult().ransac_iterations, 1);
+  EXPECT_GT(defaults->getResult().ransac_iterations, 1);
+
+  // RANSAC inlier threshold: 1 mm leaves fewer corners in agreement than 15 cm.
+  const auto strict = run([](Contour &r) { r.setRANSACOutlierRejectionThreshold(0.001); });
+  EXPECT_LT(strict->getResult().inliers.size(), defaults->getResult().inliers.size());
+
+  // The refinement's pairing distance: 1 cm pairs less of the noisy contour than the default.
+  const auto narrow = run([](Contour &r) { r.setMaxCorrespondenceDistance(0.01); });
+  EXPECT_DOUBLE_EQ(narrow->getRegistrationParams().refinement.max_distance, 0.01);
+  EXPECT_LT(narrow->getResult().overlap, defaults->getResult().overlap - 0.1);
+
+  // The refinement's iterations: one step from the corners' answer fits the contours worse than twelve.
+  const auto one_step = run([](Contour &r) { r.setMaximumIterations(1); });
+  ASSERT_TRUE(one_step->hasConverged());
+  EXPECT_GT(one_step->getResult().contour_rmse, defaults->getResult().contour_rmse);
+
+  // The transformation epsilon: a 10 cm stop ends the refinement at the first step below it.
+  const auto loose = run([](Contour &r) {
+    r.setTransformationEpsilon(0.1 * 0.1);
+    r.setTransformationRotationEpsilon(std::cos(0.1));
+  });
+  EXPECT_DOUBLE_EQ(loose->getRegistrationParams().refinement.stop_translation, 0.1);
+  EXPECT_NEAR(loose->getRegistrationParams().refinement.stop_rotation, 0.1, 1e-9);
+  EXPECT_FALSE(loose->getFinalTransformation().isApprox(defaults->getFinalTransformation(), 1e-7f));
+
+  // Documented as having no effect: the Euclidean fitness epsilon.
+  const auto fitness = run([](Contour &r) { r.setEuclideanFitnessEpsilon(1.0); });
+  EXPECT_TRUE(fitness->getFinalTransformation().isApprox(defaults->getFinalTransformation()));
+
+  // setRegistrationParams() and the PCL setters write the same settings: the last call holds.
+  RegistrationParams params;
+  params.ransac.max_iterations = 7;
+  const auto last_call = run([&](Contour &r) {
+    r.setRANSACIterations(3);
+    r.setRegistrationParams(params);
+  });
+  EXPECT_EQ(last_call->getRegistrationParams().ransac.max_iterations, 7);
+  EXPECT_LE(last_call->getResult().ransac_iterations, 7);
 }
 
 TEST(ContourRegistration, EmptyAndAllNanCloudsFailThePclWay) {

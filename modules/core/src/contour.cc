@@ -1,5 +1,5 @@
 #include "contour_reg/core/contour.h"
-#include "contour_reg/core/validation.h"
+#include "validation.h"
 
 #include <cmath>
 #include <limits>

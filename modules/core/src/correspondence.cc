@@ -1,5 +1,5 @@
 #include "contour_reg/core/correspondence.h"
-#include "contour_reg/core/validation.h"
+#include "validation.h"
 
 #include <algorithm>
 #include <cmath>

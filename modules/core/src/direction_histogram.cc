@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 
 #include "contour_reg/core/transform_estimation.h"
-#include "contour_reg/core/validation.h"
+#include "validation.h"
 
 namespace contour_reg {
 

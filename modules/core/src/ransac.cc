@@ -1,5 +1,5 @@
 #include "contour_reg/core/ransac.h"
-#include "contour_reg/core/validation.h"
+#include "validation.h"
 
 #include <algorithm>
 #include <cmath>

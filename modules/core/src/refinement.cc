@@ -1,5 +1,5 @@
 #include "contour_reg/core/refinement.h"
-#include "contour_reg/core/validation.h"
+#include "validation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -106,6 +106,8 @@ bool RefinementParams::validate(std::string *why) const {
   if (!(min_distance > 0.0 && max_distance >= min_distance)) return invalid(why, "refinement distances must be 0 < min <= max");
   if (!(sample_step > 0.0)) return invalid(why, "refinement.sample_step must be > 0");
   if (!(huber > 0.0)) return invalid(why, "refinement.huber must be > 0");
+  if (!(stop_translation >= 0.0 && stop_rotation >= 0.0))
+    return invalid(why, "refinement.stop_translation and stop_rotation must be >= 0");
   if (!(covariance_scale > 0.0)) return invalid(why, "refinement.covariance_scale must be > 0");
   return true;
 }
@@ -202,7 +204,9 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     y += step(1);
     yaw += step(2);
     distance = std::max(params.min_distance, distance * 0.7);
-    if (step.head<2>().norm() < 1e-4 && std::abs(step(2)) < 1e-5 && distance <= params.min_distance) break;
+    if (step.head<2>().norm() < params.stop_translation && std::abs(step(2)) < params.stop_rotation &&
+        distance <= params.min_distance)
+      break;
   }
   result.transform = rigidTransform(x, y, yaw);
   if (result.pairs >= 6) {

@@ -20,7 +20,7 @@ namespace {
 using Contour = ContourRegistration<pcl::PointXYZ, pcl::PointXYZ>;
 using CoarseToFine = CoarseToFineRegistration<pcl::PointXYZ, pcl::PointXYZ>;
 
-Registration::Ptr makeContour(const MatcherSettings &settings) {
+Contour::Ptr makeContour(const MatcherSettings &settings) {
   auto contour = pcl::make_shared<Contour>();
   contour->setContourParams(settings.contour);
   contour->setRegistrationParams(settings.registration);
@@ -66,11 +66,6 @@ Registration::Ptr makeGicp(const MatcherSettings &settings) {
   return gicp;
 }
 
-Registration::Ptr makeContourIcp(const MatcherSettings &settings) {
-  auto composed = pcl::make_shared<CoarseToFine>();
-  composed->setCoarseStage(makeContour(settings));
-  return composed;
-}
 
 Eigen::Matrix4f toMatrix4(const Eigen::Matrix3d &planar) {
   Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
@@ -91,13 +86,6 @@ Eigen::Matrix3d toPlanar(const Eigen::Matrix4f &m) {
   return t;
 }
 
-const Contour *contourStage(Registration &registration) {
-  if (auto *contour = dynamic_cast<Contour *>(&registration)) return contour;
-  if (auto *composed = dynamic_cast<CoarseToFine *>(&registration))
-    return dynamic_cast<const Contour *>(composed->getCoarseStage().get());
-  return nullptr;
-}
-
 }  // namespace
 
 const std::vector<std::string> &methodNames() {
@@ -113,8 +101,13 @@ Cloud::Ptr beamCloud(const LaserScan &scan) {
   return cloud;
 }
 
-ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool wants_beam_order)
-    : name_(std::move(name)), registration_(std::move(registration)), wants_beam_order_(wants_beam_order) {}
+ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool wants_beam_order,
+                         std::function<void()> swap_source_and_target, const Contour *contour)
+    : name_(std::move(name)),
+      registration_(std::move(registration)),
+      wants_beam_order_(wants_beam_order),
+      swap_source_and_target_(std::move(swap_source_and_target)),
+      contour_(contour) {}
 
 Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan) {
   if (wants_beam_order_) return beamCloud(scan);
@@ -126,19 +119,31 @@ Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan) {
 }
 
 MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess) {
-  if (!(keyOf(target) == target_key_)) {
-    target_cloud_ = (keyOf(target) == source_key_) ? source_cloud_ : cloudFor(target);
+  // The clouds first (scan conversion is not the registration's time), then what changed.
+  const bool new_target = !(keyOf(target) == target_key_);
+  const bool swap = new_target && keyOf(target) == source_key_ && swap_source_and_target_ && source_cloud_;
+  const bool new_source = !(keyOf(source) == (swap ? target_key_ : source_key_));
+  Cloud::Ptr next_target = new_target && !swap ? (keyOf(target) == source_key_ ? source_cloud_ : cloudFor(target))
+                                                : nullptr;
+  Cloud::Ptr next_source = new_source ? cloudFor(source) : nullptr;
+
+  const auto start = std::chrono::steady_clock::now();
+  if (swap) {
+    swap_source_and_target_();  // the last source, with its features, becomes the target
+    std::swap(source_cloud_, target_cloud_);
+    std::swap(source_key_, target_key_);
+  } else if (new_target) {
+    target_cloud_ = std::move(next_target);
     target_key_ = keyOf(target);
+    registration_->setInputTarget(target_cloud_);
   }
-  if (!(keyOf(source) == source_key_)) {
-    source_cloud_ = cloudFor(source);
+  if (new_source) {
+    source_cloud_ = std::move(next_source);
     source_key_ = keyOf(source);
+    registration_->setInputSource(source_cloud_);
   }
   MatchResult result;
   Cloud aligned;
-  const auto start = std::chrono::steady_clock::now();
-  registration_->setInputTarget(target_cloud_);
-  registration_->setInputSource(source_cloud_);
   if (target_cloud_->empty() || source_cloud_->empty()) {
     result.transform = guess;
     result.reason = target_cloud_->empty() ? "target scan has no valid beam" : "source scan has no valid beam";
@@ -149,12 +154,12 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
   result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.converged = registration_->hasConverged();
   result.transform = result.converged ? toPlanar(registration_->getFinalTransformation()) : guess;
-  if (const Contour *contour = contourStage(*registration_)) {
-    result.degenerate = contour->isDegenerate();
-    result.covariance = contour->getCovariance();
-    if (!contour->hasConverged()) {
-      result.reason = contour->getFailureReason();
-      result.status = toString(contour->getResult().status);
+  if (contour_) {
+    result.degenerate = contour_->isDegenerate();
+    result.covariance = contour_->getCovariance();
+    if (!contour_->hasConverged()) {
+      result.reason = contour_->getFailureReason();
+      result.status = toString(contour_->getResult().status);
     }
   }
   if (!result.converged && result.reason.empty()) result.reason = name_ + " did not converge";
@@ -163,8 +168,18 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
 }
 
 std::unique_ptr<ScanMatcher> makeScanMatcher(const std::string &method, const MatcherSettings &settings) {
-  if (method == "contour") return std::make_unique<ScanMatcher>(method, makeContour(settings), true);
-  if (method == "contour+icp") return std::make_unique<ScanMatcher>(method, makeContourIcp(settings), true);
+  if (method == "contour") {
+    const Contour::Ptr contour = makeContour(settings);
+    return std::make_unique<ScanMatcher>(
+        method, contour, true, [stage = contour.get()] { stage->swapSourceAndTarget(); }, contour.get());
+  }
+  if (method == "contour+icp") {
+    auto composed = pcl::make_shared<CoarseToFine>();
+    composed->setCoarseStage(makeContour(settings));
+    return std::make_unique<ScanMatcher>(
+        method, composed, true, [stage = composed.get()] { stage->swapSourceAndTarget(); },
+        composed->getCoarseStage().get());
+  }
   if (method == "icp") return std::make_unique<ScanMatcher>(method, makeIcp(settings), false);
   if (method == "ndt2d") return std::make_unique<ScanMatcher>(method, makeNdt2d(settings), false);
   if (method == "ndt") return std::make_unique<ScanMatcher>(method, makeNdt(settings), false);

@@ -1,5 +1,8 @@
 #include "contour_reg/cloud_conversions.h"
 
+#include <iterator>
+#include <limits>
+
 namespace contour_reg {
 
 bool isInBearingOrder(const ComplexSequence &points) {
@@ -16,9 +19,19 @@ bool isInBearingOrder(const ComplexSequence &points) {
   return true;
 }
 
-void sortByBearing(ComplexSequence &points) {
-  std::stable_sort(points.begin(), points.end(),
-                   [](const Complex &a, const Complex &b) { return std::arg(a) < std::arg(b); });
+void sortByBearing(ComplexSequence &points, std::vector<int> *order) {
+  std::vector<std::size_t> by_bearing(points.size());
+  std::iota(by_bearing.begin(), by_bearing.end(), std::size_t{0});
+  std::vector<double> bearings(points.size());
+  for (std::size_t n = 0; n < points.size(); ++n) bearings[n] = std::arg(points[n]);
+  std::stable_sort(by_bearing.begin(), by_bearing.end(),
+                   [&](std::size_t a, std::size_t b) { return bearings[a] < bearings[b]; });
+  const ComplexSequence unsorted = points;
+  const std::vector<int> positions = order ? *order : std::vector<int>{};
+  for (std::size_t n = 0; n < points.size(); ++n) {
+    points[n] = unsorted[by_bearing[n]];
+    if (order) (*order)[n] = positions[by_bearing[n]];
+  }
 }
 
 ContourCorner toContourCorner(const SpecialPoint &point) {
@@ -40,6 +53,32 @@ ContourCorner toContourCorner(const SpecialPoint &point) {
     out.fragment[2 * (offset + m) + 1] = static_cast<float>(point.fragment[m].imag());
   }
   return out;
+}
+
+ContourCorner noContourCorner() {
+  ContourCorner out{};
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  out.x = out.y = out.z = nan;
+  out.data[3] = 1.0f;
+  out.corner_angle = out.orientation = out.response = out.turn = nan;
+  std::fill(std::begin(out.fragment), std::end(out.fragment), nan);
+  return out;
+}
+
+int nearestBeam(const ContourFeatures &features, const SpecialPoint &point) {
+  if (point.contour < 0 || point.contour >= static_cast<int>(features.segments.size())) return -1;
+  const ContourSegment &segment = features.segments[static_cast<std::size_t>(point.contour)];
+  const Complex vertex(point.position.x(), point.position.y());
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (std::size_t n = 0; n < segment.points.size(); ++n) {
+    const double distance = std::norm(segment.points[n] - vertex);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = segment.beam_indices[n];
+    }
+  }
+  return best;
 }
 
 }  // namespace contour_reg

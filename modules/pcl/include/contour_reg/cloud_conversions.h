@@ -25,13 +25,16 @@ namespace contour_reg {
 /// True when the bearings of `points` increase along the sequence, allowing one wrap-around.
 bool isInBearingOrder(const ComplexSequence &points);
 
-/// Sorts finite points by bearing, from -pi.
-void sortByBearing(ComplexSequence &points);
+/// Sorts finite points by bearing, from -pi. With `order` (holding each point's position
+/// before the sort), the positions are moved along with their points.
+void sortByBearing(ComplexSequence &points, std::vector<int> *order = nullptr);
 
 /// The polar code of a cloud (or of the points named by `indices`, in that order), into
-/// `code`, reusing its buffer.
+/// `code`, reusing its buffer. With `order`, order[n] is the position in the cloud (or in
+/// `indices`) of code point n.
 template <typename PointT>
-void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &code, const pcl::Indices *indices = nullptr) {
+void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &code, const pcl::Indices *indices = nullptr,
+                        std::vector<int> *order = nullptr) {
   const std::size_t count = indices ? indices->size() : cloud.size();
   code.clear();
   code.reserve(count);
@@ -41,7 +44,11 @@ void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &c
     code.emplace_back(p.x, p.y);
     has_invalid = has_invalid || !isFinite(code.back());
   }
-  if (!has_invalid && !isInBearingOrder(code)) sortByBearing(code);
+  if (order) {
+    order->resize(count);
+    std::iota(order->begin(), order->end(), 0);
+  }
+  if (!has_invalid && !isInBearingOrder(code)) sortByBearing(code, order);
 }
 
 /// The polar code of a cloud (or of the points named by `indices`, in that order).
@@ -54,15 +61,24 @@ ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const p
 
 /// Stages A-C on a cloud (or on the points named by `indices`) into `features`; the polar
 /// code goes into the features' own buffer, so a warm `features` allocates nothing.
+/// With `order`, as polarCodeFromCloud() gives it: the cloud position of each beam index of
+/// the features' segments.
 template <typename PointT>
 void extractContourFeatures(const pcl::PointCloud<PointT> &cloud, const ContourParams &params, ContourFeatures &features,
-                            const pcl::Indices *indices = nullptr) {
+                            const pcl::Indices *indices = nullptr, std::vector<int> *order = nullptr) {
   ComplexSequence &code = features.buffers.polar_code;  // the extraction reads it, never writes it
-  polarCodeFromCloud(cloud, code, indices);
+  polarCodeFromCloud(cloud, code, indices, order);
   extractContourFeatures(code, params, features);
 }
 
 /// Fills a PCL special point from a core special point.
 ContourCorner toContourCorner(const SpecialPoint &point);
+
+/// A ContourCorner whose every field is NaN: no corner at this point.
+ContourCorner noContourCorner();
+
+/// The raw point nearest a special point's vertex, as an index into the polar code the
+/// features were extracted from (a beam index of its segment).
+int nearestBeam(const ContourFeatures &features, const SpecialPoint &point);
 
 }  // namespace contour_reg

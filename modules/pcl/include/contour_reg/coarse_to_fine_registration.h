@@ -5,7 +5,6 @@
 
 #include <memory>
 
-#include <pcl/filters/filter.h>
 #include <pcl/registration/icp.h>
 #include <pcl/registration/registration.h>
 #include <pcl/registration/transformation_estimation_2D.h>
@@ -16,17 +15,23 @@ namespace contour_reg {
 
 /// Coarse-to-fine registration as one pcl::Registration.
 ///
-/// align(output, guess) runs the coarse stage from `guess`; when it converges, the fine
-/// stage starts from its answer on the same clouds without their NaN points. The result
-/// has converged only when both stages did and the fine stage moved the coarse answer by
-/// at most setMaxFineCorrection() (metres, radians): a larger correction means ICP fell
-/// into another minimum, and the coarse answer is kept (converged, flagged by
-/// fineStageRejected()). When the coarse stage fails because its features cannot decide
-/// (a ContourRegistration reporting too few special points, pairs or inliers) and
-/// setFineFromGuess(true) (the default), the fine stage runs from the guess alone and its
-/// own convergence is reported (fineFromGuess() tells); a local answer, right only when
-/// the guess was close. Any other coarse failure (degenerate geometry, invalid input)
-/// ends there: not converged, final transformation = guess.
+/// align(output, guess) runs the coarse stage, a ContourRegistration, from `guess`; when it
+/// converges, the fine stage starts from its answer on the same clouds without their NaN
+/// points. The result has converged only when both stages did and the fine stage moved the
+/// coarse answer by at most setMaxFineCorrection() (metres, radians): a larger correction
+/// means ICP fell into another minimum, and the coarse answer is kept (converged, flagged by
+/// fineStageRejected()). When the coarse stage fails because its features cannot decide (too
+/// few special points, pairs or inliers) and setFineFromGuess(true) (the default), the fine
+/// stage runs from the guess alone and its own convergence is reported (fineFromGuess()
+/// tells); a local answer, right only when the guess was close. Any other coarse failure
+/// (degenerate geometry, invalid input) ends there: not converged, final transformation =
+/// guess.
+///
+/// Inputs follow ContourRegistration's contract: every setInputSource()/setInputTarget() is
+/// new data, align() reads the source it holds every time, and swapSourceAndTarget() is the
+/// odometry step that reuses what was extracted from the last source. The stages are
+/// configured through getCoarseStage() and getFineStage(); this class's own PCL setters
+/// (setMaximumIterations(), setMaxCorrespondenceDistance(), ...) have no effect.
 ///
 /// Defaults: ContourRegistration, then ICP with TransformationEstimation2D, 0.3 m
 /// correspondence distance, 30 iterations, 1e-8 transformation epsilon.
@@ -35,10 +40,13 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
  public:
   using Base = pcl::Registration<PointSource, PointTarget, Scalar>;
   using Ptr = std::shared_ptr<CoarseToFineRegistration<PointSource, PointTarget, Scalar>>;
-  using Stage = pcl::Registration<PointSource, PointTarget, Scalar>;
+  using ConstPtr = std::shared_ptr<const CoarseToFineRegistration<PointSource, PointTarget, Scalar>>;
+  using Coarse = ContourRegistration<PointSource, PointTarget, Scalar>;
+  using Fine = pcl::Registration<PointSource, PointTarget, Scalar>;
   using typename Base::Matrix4;
   using typename Base::PointCloudSource;
   using typename Base::PointCloudSourceConstPtr;
+  using typename Base::PointCloudTarget;
   using typename Base::PointCloudTargetConstPtr;
   using Base::converged_;
   using Base::final_transformation_;
@@ -46,22 +54,12 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   using Base::target_;
   using Base::transformation_;
 
-  CoarseToFineRegistration() {
-    this->reg_name_ = "CoarseToFineRegistration";
-    coarse_ = std::make_shared<ContourRegistration<PointSource, PointTarget, Scalar>>();
-    auto icp = std::make_shared<pcl::IterativeClosestPoint<PointSource, PointTarget, Scalar>>();
-    icp->setTransformationEstimation(
-        std::make_shared<pcl::registration::TransformationEstimation2D<PointSource, PointTarget, Scalar>>());
-    icp->setMaxCorrespondenceDistance(0.3);
-    icp->setMaximumIterations(30);
-    icp->setTransformationEpsilon(1e-8);
-    fine_ = icp;
-  }
+  CoarseToFineRegistration();
 
-  void setCoarseStage(const typename Stage::Ptr &stage) { coarse_ = stage; }
-  void setFineStage(const typename Stage::Ptr &stage) { fine_ = stage; }
-  const typename Stage::Ptr &getCoarseStage() const { return coarse_; }
-  const typename Stage::Ptr &getFineStage() const { return fine_; }
+  void setCoarseStage(const typename Coarse::Ptr &stage) { coarse_ = stage; }
+  void setFineStage(const typename Fine::Ptr &stage) { fine_ = stage; }
+  const typename Coarse::Ptr &getCoarseStage() const { return coarse_; }
+  const typename Fine::Ptr &getFineStage() const { return fine_; }
   /// Largest change the fine stage may make to the coarse answer (m, rad).
   void setMaxFineCorrection(double metres, double radians) {
     max_fine_translation_ = metres;
@@ -74,87 +72,40 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   /// True when the last answer came from the fine stage alone, started at the guess.
   bool fineFromGuess() const { return fine_from_guess_; }
 
-  void setInputSource(const PointCloudSourceConstPtr &cloud) override {
-    if (cloud && !cloud->empty()) Base::setInputSource(cloud);
-    else input_ = cloud;
-    coarse_->setInputSource(cloud);
-    finite_source_ = finite(cloud);
-  }
-  void setInputTarget(const PointCloudTargetConstPtr &cloud) override {
-    if (cloud == target_ && finite_target_) return;
-    if (cloud && !cloud->empty()) Base::setInputTarget(cloud);
-    else target_ = cloud;
-    coarse_->setInputTarget(cloud);
-    if constexpr (std::is_same_v<PointSource, PointTarget>) {
-      if (cloud && cloud == input_) {  // odometry: the last source becomes the target
-        finite_target_ = finite_source_;
-        return;
-      }
-    }
-    finite_target_ = finite(cloud);
-  }
+  /// New data: read at every align().
+  void setInputSource(const PointCloudSourceConstPtr &cloud) override;
+  /// New data: its features and finite points are prepared at the next align() and kept until it is set again.
+  void setInputTarget(const PointCloudTargetConstPtr &cloud) override;
+  /// As ContourRegistration::swapSourceAndTarget(): the odometry step for clouds not changed since the last align().
+  void swapSourceAndTarget();
+  void clearSource();
+  void clearTarget();
 
  protected:
-  void computeTransformation(PointCloudSource &output, const Matrix4 &guess) override {
-    final_transformation_ = transformation_ = guess;
-    converged_ = false;
-    fine_rejected_ = false;
-    fine_from_guess_ = false;
-    PointCloudSource scratch;
-    coarse_->align(scratch, guess);
-    if (!coarse_->hasConverged()) {
-      if (fine_from_guess_enabled_ && coarseUndecided() && finite_source_ && finite_target_ &&
-          !finite_source_->empty() && !finite_target_->empty()) {
-        fine_->setInputSource(finite_source_);
-        fine_->setInputTarget(finite_target_);
-        fine_->align(scratch, guess);
-        fine_from_guess_ = true;
-        converged_ = fine_->hasConverged();
-        if (converged_) final_transformation_ = transformation_ = fine_->getFinalTransformation();
-      }
-      pcl::transformPointCloud(*input_, output, final_transformation_);
-      return;
-    }
-    const Matrix4 coarse = coarse_->getFinalTransformation();
-    final_transformation_ = transformation_ = coarse;
-    converged_ = true;
-    fine_->setInputSource(finite_source_);
-    fine_->setInputTarget(finite_target_);
-    fine_->align(scratch, coarse);
-    const Matrix4 fine = fine_->getFinalTransformation();
-    const Matrix4 change = coarse.inverse() * fine;
-    const double moved = std::hypot(double(change(0, 3)), double(change(1, 3)));
-    const double turned = std::abs(std::atan2(double(change(1, 0)), double(change(0, 0))));
-    fine_rejected_ = !fine_->hasConverged() || moved > max_fine_translation_ || turned > max_fine_rotation_;
-    if (!fine_rejected_) final_transformation_ = transformation_ = fine;
-    pcl::transformPointCloud(*input_, output, final_transformation_);
-  }
+  void computeTransformation(PointCloudSource &output, const Matrix4 &guess) override;
 
  private:
-  bool coarseUndecided() const {
-    const auto *contour = dynamic_cast<const ContourRegistration<PointSource, PointTarget, Scalar> *>(coarse_.get());
-    if (!contour) return false;
-    const RegistrationStatus status = contour->getResult().status;
-    return status == RegistrationStatus::kTooFewSpecialPoints || status == RegistrationStatus::kTooFewCorrespondences ||
-           status == RegistrationStatus::kTooFewInliers;
-  }
+  bool coarseUndecided() const;
 
-  template <typename CloudPtr>
-  static CloudPtr finite(const CloudPtr &cloud) {
-    if (!cloud || cloud->is_dense) return cloud;
-    using Cloud = typename std::remove_const_t<typename CloudPtr::element_type>;
-    auto out = std::make_shared<Cloud>();
-    pcl::Indices kept;
-    pcl::removeNaNFromPointCloud(*cloud, *out, kept);
-    return out;
-  }
-
-  typename Stage::Ptr coarse_, fine_;
+  typename Coarse::Ptr coarse_;
+  typename Fine::Ptr fine_;
+  // The clouds without their NaN points, as the fine stage takes them; the target's is made
+  // at the first align() after setInputTarget(), the source's at every align().
   PointCloudSourceConstPtr finite_source_;
   PointCloudTargetConstPtr finite_target_;
+  typename PointCloudSource::Ptr source_buffer_;  // NaN-free copies of clouds that are not dense
+  typename PointCloudTarget::Ptr target_buffer_;
+  bool finite_target_ready_ = false;
   double max_fine_translation_ = 0.10, max_fine_rotation_ = 0.035;
   bool fine_rejected_ = false;
   bool fine_from_guess_enabled_ = true, fine_from_guess_ = false;
 };
 
+}  // namespace contour_reg
+
+#include "contour_reg/impl/coarse_to_fine_registration.hpp"
+
+namespace contour_reg {
+extern template class CoarseToFineRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+extern template class CoarseToFineRegistration<pcl::PointXYZI, pcl::PointXYZI>;
 }  // namespace contour_reg

@@ -22,17 +22,29 @@ namespace contour_reg {
 /// bearing first (see cloud_conversions.h). If indices are set, only those points are
 /// used, in the order of the indices.
 ///
-/// Output: like a pcl::Keypoint, one point per special point found (not one per input
-/// point), is_dense = true; an empty scan, one without valid beams or one without
-/// corners gives an empty output without error. The class derives from pcl::Feature so
-/// that it plugs into PCL's feature interfaces; a contour needs no neighbour search, so
-/// initCompute() skips the search set-up that pcl::Feature demands.
+/// Output: pcl::Feature's contract, one output point per input point (per index when
+/// indices are set, in their order). The point nearest a corner's vertex carries that corner
+/// (its vertex, angle, orientation, response, turn and fragment; the stronger one where two
+/// corners share a point); every other output point is NaN in every field, as PCL marks
+/// points a feature cannot be computed for, and is_dense is false unless every point carries
+/// a corner. A corner is a property of its neighbourhood on the contour, as a boundary is in
+/// pcl::BoundaryEstimation, so a per-point answer lets a user keep the output beside the
+/// scan (pcl::concatenateFields) or pick the corners by index. getCornerIndices() lists
+/// the cloud indices that carry a corner, as pcl::Keypoint::getKeypointsIndices() would, and
+/// getContourFeatures() every stage's result. PointOutT is ContourCorner or any PCL point
+/// type: the fields it shares with ContourCorner by name are copied (x, y, z into
+/// pcl::PointXYZ, say). An empty scan gives an empty output, one without valid beams or
+/// without corners an output of NaN points, without error. The class derives from
+/// pcl::Feature so that it plugs into PCL's feature interfaces; a contour needs no
+/// neighbour search, so initCompute() skips the search set-up that pcl::Feature demands.
 ///
 /// \code
 /// contour_reg::ContourCornerEstimation<pcl::PointXYZ> corners;
 /// corners.setInputCloud(scan);
 /// pcl::PointCloud<contour_reg::ContourCorner> out;
-/// corners.compute(out);
+/// corners.compute(out);                        // out.size() == scan->size()
+/// for (int index : corners.getCornerIndices())  // the corners only
+///   use(out[index]);
 /// \endcode
 template <typename PointInT, typename PointOutT = ContourCorner>
 class ContourCornerEstimation : public pcl::Feature<PointInT, PointOutT> {
@@ -72,6 +84,9 @@ class ContourCornerEstimation : public pcl::Feature<PointInT, PointOutT> {
 
   /// Every stage's result for the last computed scan (segments, contours, responses).
   const ContourFeatures &getContourFeatures() const { return features_; }
+  /// The indices into the input cloud of the points that carry a corner, one per special
+  /// point of getContourFeatures() in its order (-1 for a special point without a raw point).
+  const pcl::Indices &getCornerIndices() const { return corner_indices_; }
 
  protected:
   bool initCompute() override;
@@ -80,6 +95,8 @@ class ContourCornerEstimation : public pcl::Feature<PointInT, PointOutT> {
  private:
   ContourParams params_;
   ContourFeatures features_;
+  std::vector<int> order_;  // the position in the indices of each polar code point
+  pcl::Indices corner_indices_;
 };
 
 }  // namespace contour_reg
@@ -89,4 +106,5 @@ class ContourCornerEstimation : public pcl::Feature<PointInT, PointOutT> {
 namespace contour_reg {
 extern template class ContourCornerEstimation<pcl::PointXYZ, ContourCorner>;
 extern template class ContourCornerEstimation<pcl::PointXYZI, ContourCorner>;
+extern template class ContourCornerEstimation<pcl::PointXYZ, pcl::PointXYZ>;
 }  // namespace contour_reg

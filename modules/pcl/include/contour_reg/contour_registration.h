@@ -20,9 +20,26 @@ namespace contour_reg {
 /// convention); z is left alone.
 ///
 /// Input: scans as ContourCornerEstimation takes them (beam order, NaN for invalid beams,
-/// z ignored). The target's special points are cached while the target is unchanged,
-/// and when the new target is the previous source cloud (odometry: each scan against the
-/// previous one) its features are reused.
+/// z ignored). As in PCL, every setInputSource()/setInputTarget() is new data, also when it
+/// passes the same pointer again: a cloud refilled in place must be set again, and then its
+/// new contents count. align() reads the source cloud it holds every time (as ICP does); the
+/// target's special points are extracted at the first align() after setInputTarget() and kept
+/// for later align() calls until the target is set again (as PCL keeps the target's kd-tree).
+/// swapSourceAndTarget() is the one path that reuses the source's special points: odometry
+/// (each scan against the previous one) swaps, sets the new scan as source, and aligns, so
+/// each scan is read once.
+///
+/// PCL's settings: setRANSACIterations() is the RANSAC iterations k,
+/// setRANSACOutlierRejectionThreshold() the RANSAC inlier threshold t on corner vertices (m),
+/// setMaximumIterations() the refinement's Gauss-Newton iterations,
+/// setMaxCorrespondenceDistance() the refinement's widest pairing distance (m; it shrinks each
+/// iteration to refinement.min_distance, or stays at this distance when that is smaller), and
+/// setTransformationEpsilon() / setTransformationRotationEpsilon() its stop: a step shorter
+/// than sqrt(epsilon) metres that turns by less than acos(rotation epsilon). They and
+/// setRegistrationParams() write the same settings: whichever is called last holds.
+/// setEuclideanFitnessEpsilon() and PCL's convergence criteria have no effect (RANSAC and the
+/// judgement of the result decide convergence). getFinalTransformation() is the answer,
+/// getFitnessScore() PCL's score of it; nr_iterations_ counts the RANSAC iterations.
 ///
 /// The initial guess of align(output, guess): the corner match needs none (the fragment
 /// distance is rotation invariant). The guess is refined on the contours where the corners
@@ -61,22 +78,29 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
 
   ContourRegistration();
 
+  /// New data: read at every align().
   void setInputSource(const PointCloudSourceConstPtr &cloud) override;
+  /// New data: its special points are extracted at the next align() and kept until it is set again.
   void setInputTarget(const PointCloudTargetConstPtr &cloud) override;
+  /// Makes the source the target and the target the source, each with the special points
+  /// extracted from it at the last align(). For clouds not changed since that align(): the
+  /// odometry step is swapSourceAndTarget(), setInputSource(next scan), align().
+  void swapSourceAndTarget();
+  /// Forgets the source (or the target) and what was extracted from it; align() then fails
+  /// until a new one is set.
+  void clearSource();
+  void clearTarget();
 
   /// Stages A-C settings (contour, equalization, corner filter, special points).
   void setContourParams(const ContourParams &params);
   const ContourParams &getContourParams() const { return contour_params_; }
-  /// Stages D-F and refinement settings.
-  void setRegistrationParams(const RegistrationParams &params) { params_ = params; }
-  const RegistrationParams &getRegistrationParams() const { return params_; }
+  /// Stages D-F and refinement settings (also PCL's iteration, threshold and epsilon settings).
+  void setRegistrationParams(const RegistrationParams &params);
+  /// The settings align() uses, with those set through PCL's setters.
+  RegistrationParams getRegistrationParams() const;
 
   void setTransformModel(TransformModel model) { params_.ransac.model = model; }
   void setFragmentDistance(FragmentDistance form) { params_.correspondence.distance = form; }
-  /// t: RANSAC inlier threshold on corner vertices, m.
-  void setInlierThreshold(double metres) { params_.ransac.inlier_threshold = metres; }
-  /// k: RANSAC iterations.
-  void setRansacIterations(int iterations) { params_.ransac.max_iterations = iterations; }
   /// Enables the point-to-line refinement on the contours (on by default).
   void setRefinement(bool enabled) { params_.refinement.enabled = enabled; }
   /// Gate pairs by the initial guess (m); 0 ignores the guess for pairing.
@@ -90,6 +114,7 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   const std::string &getFailureReason() const { return result_.reason; }
   bool isDegenerate() const { return result_.degenerate; }
   const Eigen::Matrix3d &getCovariance() const { return result_.covariance; }
+  /// Stages A-C of the source and of the target as the last align() used them.
   const ContourFeatures &getSourceFeatures() const { return source_features_; }
   const ContourFeatures &getTargetFeatures() const { return target_features_; }
 
@@ -101,10 +126,18 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   RegistrationParams params_;
   unsigned seed_ = 42;
   std::mt19937 rng_;
+  // Base-class members that PCL's setters write, from params_ (setRegistrationParams).
+  void writePclSettings(const RegistrationParams &params);
+  // A source or target without the feature bookkeeping of the public setters.
+  void holdSource(const PointCloudSourceConstPtr &cloud);
+  void holdTarget(const PointCloudTargetConstPtr &cloud);
+
   ContourFeatures source_features_, target_features_;
-  RegistrationBuffers buffers_;  // the target's refinement index, kept while the target is unchanged
-  bool source_ready_ = false, target_ready_ = false;
-  const void *source_cloud_ = nullptr;  // identity of the cloud source_features_ belong to
+  RegistrationBuffers buffers_;  // the target's refinement index, rebuilt for a new target extraction
+  // Whether the features were extracted from the cloud now set (at the last align()): the
+  // target's are used while true; the source's only right after swapSourceAndTarget().
+  bool source_extracted_ = false, target_extracted_ = false;
+  bool reuse_source_ = false;
   RegistrationResult result_;
 };
 

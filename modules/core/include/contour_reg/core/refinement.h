@@ -29,6 +29,10 @@ struct RefinementParams {
   double min_distance = 0.08;    ///< m, pairing distance it shrinks to
   double sample_step = 0.1;      ///< m, spacing of the source samples along the contour
   double huber = 0.03;           ///< m, Huber threshold of the point-to-line residual
+  /// The refinement stops once the pairing distance has shrunk to min_distance and a step
+  /// moves the pose by less than stop_translation (m) and turns it by less than stop_rotation (rad).
+  double stop_translation = 1e-4;
+  double stop_rotation = 1e-5;
   double degeneracy_ratio = 0.005;  ///< smallest / largest eigenvalue below this is degenerate: no step along it
   /// The covariance is sigma^2 H^-1 times this. Neighbouring samples share raw points (the
   /// equalization averages them), so their residuals are correlated and sigma^2 H^-1 alone is

@@ -5,6 +5,7 @@
 /// method sees the same scans and the same guess; each gets the cloud form it needs
 /// (beam order with NaN beams for the contour method, finite points for the others).
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include <pcl/point_types.h>
 #include <pcl/registration/registration.h>
 
+#include "contour_reg/contour_registration.h"
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/laser_scan.h"
 #include "contour_reg/core/registration.h"
@@ -51,12 +53,20 @@ const std::vector<std::string> &methodNames();
 /// The beam-order cloud of a scan, NaN points for invalid beams (is_dense = false).
 Cloud::Ptr beamCloud(const LaserScan &scan);
 
-/// Registers scans with one method. Consecutive calls that reuse a scan (the previous
-/// source as the next target, or the same target) reuse its cloud, so methods that cache
-/// per cloud (ContourRegistration's features, ICP's kd-tree) do so.
+/// Registers scans with one method. The scans must not change while a matcher is used on
+/// them: a scan is known by its address, its range buffer and its stamp. A call whose target
+/// is the last call's target sets no new target (the registration keeps what it extracted
+/// from it); a call whose target is the last call's source hands that source over with
+/// `swap_source_and_target` when the method has one (ContourRegistration and
+/// CoarseToFineRegistration), so each scan's features are extracted once.
 class ScanMatcher {
  public:
-  ScanMatcher(std::string name, Registration::Ptr registration, bool wants_beam_order);
+  /// `swap_source_and_target` (may be empty): the registration's swapSourceAndTarget().
+  /// `contour` (may be null): the contour stage whose status, reason, covariance and
+  /// degeneracy each MatchResult reports.
+  ScanMatcher(std::string name, Registration::Ptr registration, bool wants_beam_order,
+              std::function<void()> swap_source_and_target = {},
+              const ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> *contour = nullptr);
 
   const std::string &name() const { return name_; }
   Registration &registration() { return *registration_; }
@@ -79,6 +89,8 @@ class ScanMatcher {
   std::string name_;
   Registration::Ptr registration_;
   bool wants_beam_order_;
+  std::function<void()> swap_source_and_target_;
+  const ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> *contour_;
   ScanKey source_key_, target_key_;
   Cloud::Ptr source_cloud_, target_cloud_;
 };

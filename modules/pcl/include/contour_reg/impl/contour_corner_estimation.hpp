@@ -1,6 +1,10 @@
 #pragma once
 
+#include <algorithm>
 #include <string>
+#include <vector>
+
+#include <pcl/common/copy_point.h>
 
 #include <pcl/console/print.h>
 
@@ -29,14 +33,30 @@ bool ContourCornerEstimation<PointInT, PointOutT>::initCompute() {
 
 template <typename PointInT, typename PointOutT>
 void ContourCornerEstimation<PointInT, PointOutT>::computeFeature(PointCloudOut &output) {
-  const bool all_points = indices_->size() == input_->size();
-  extractContourFeatures(*input_, params_, features_, all_points ? nullptr : indices_.get());
-  output.resize(features_.special_points.size());
-  for (std::size_t k = 0; k < features_.special_points.size(); ++k)
-    output[k] = toContourCorner(features_.special_points[k]);
+  extractContourFeatures(*input_, params_, features_, this->fake_indices_ ? nullptr : indices_.get(), &order_);
+
+  // One output point per index: NaN, but where the nearest raw point of a corner's vertex is.
+  PointOutT none;
+  pcl::copyPoint(noContourCorner(), none);
+  output.resize(indices_->size());
+  std::fill(output.begin(), output.end(), none);
+  corner_indices_.assign(features_.special_points.size(), -1);
+  std::vector<double> response(indices_->size(), -1.0);
+  std::size_t carried = 0;
+  for (std::size_t k = 0; k < features_.special_points.size(); ++k) {
+    const SpecialPoint &point = features_.special_points[k];
+    const int beam = nearestBeam(features_, point);
+    if (beam < 0) continue;
+    const auto position = static_cast<std::size_t>(order_[static_cast<std::size_t>(beam)]);
+    corner_indices_[k] = (*indices_)[position];
+    if (point.response <= response[position]) continue;
+    carried += response[position] < 0.0;
+    response[position] = point.response;
+    pcl::copyPoint(toContourCorner(point), output[position]);
+  }
   output.width = static_cast<std::uint32_t>(output.size());
   output.height = 1;
-  output.is_dense = true;
+  output.is_dense = carried == output.size();
 }
 
 }  // namespace contour_reg

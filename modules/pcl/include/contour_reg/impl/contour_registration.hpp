@@ -1,5 +1,9 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
 #include <pcl/common/transforms.h>
 #include <pcl/console/print.h>
 
@@ -23,48 +27,104 @@ template <typename PointSource, typename PointTarget, typename Scalar>
 ContourRegistration<PointSource, PointTarget, Scalar>::ContourRegistration() {
   reg_name_ = "ContourRegistration";
   this->tree_.reset(new LazyKdTree<PointTarget>());
-  this->max_iterations_ = params_.ransac.max_iterations;
+  writePclSettings(params_);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::writePclSettings(const RegistrationParams &params) {
+  this->ransac_iterations_ = params.ransac.max_iterations;
+  this->inlier_threshold_ = params.ransac.inlier_threshold;
+  this->max_iterations_ = params.refinement.max_iterations;
+  this->corr_dist_threshold_ = params.refinement.max_distance;
+  this->transformation_epsilon_ = params.refinement.stop_translation * params.refinement.stop_translation;
+  this->transformation_rotation_epsilon_ = std::cos(params.refinement.stop_rotation);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::setRegistrationParams(const RegistrationParams &params) {
+  params_ = params;
+  writePclSettings(params);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+RegistrationParams ContourRegistration<PointSource, PointTarget, Scalar>::getRegistrationParams() const {
+  RegistrationParams params = params_;
+  params.ransac.max_iterations = this->ransac_iterations_;
+  params.ransac.inlier_threshold = this->inlier_threshold_;
+  params.refinement.max_iterations = this->max_iterations_;
+  params.refinement.max_distance = this->corr_dist_threshold_;
+  params.refinement.min_distance = std::min(params.refinement.min_distance, params.refinement.max_distance);
+  params.refinement.stop_translation = std::sqrt(std::max(0.0, this->transformation_epsilon_));
+  params.refinement.stop_rotation = std::acos(std::clamp(this->transformation_rotation_epsilon_, -1.0, 1.0));
+  return params;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::holdSource(const PointCloudSourceConstPtr &cloud) {
+  // pcl::Registration would keep the previous source on an empty one (and dereference a null
+  // one); align() must fail on this one instead.
+  if (cloud && !cloud->empty()) Base::setInputSource(cloud);
+  else input_ = cloud;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::holdTarget(const PointCloudTargetConstPtr &cloud) {
+  if (cloud && !cloud->empty()) {
+    Base::setInputTarget(cloud);
+  } else {
+    target_ = cloud;
+    this->target_cloud_updated_ = true;
+  }
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void ContourRegistration<PointSource, PointTarget, Scalar>::setInputSource(const PointCloudSourceConstPtr &cloud) {
-  source_ready_ = false;
-  if (cloud && cloud->empty()) {
-    // pcl::Registration would keep the previous source; align() must fail on this one instead.
+  if (cloud && cloud->empty())
     PCL_ERROR("[contour_reg::%s::setInputSource] Empty source cloud.\n", getClassName().c_str());
-    input_ = cloud;
-    return;
-  }
-  Base::setInputSource(cloud);
+  holdSource(cloud);
+  source_extracted_ = reuse_source_ = false;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void ContourRegistration<PointSource, PointTarget, Scalar>::setInputTarget(const PointCloudTargetConstPtr &cloud) {
-  const bool same_as_target = target_ready_ && cloud == target_;
-  if (cloud && cloud->empty()) {
+  if (cloud && cloud->empty())
     PCL_ERROR("[contour_reg::%s::setInputTarget] Empty target cloud.\n", getClassName().c_str());
-    target_ = cloud;
-    this->target_cloud_updated_ = true;
-    target_ready_ = false;
-    return;
-  }
-  Base::setInputTarget(cloud);
-  if (same_as_target) return;
-  // Odometry: the new target is the cloud that was the source of the last align().
-  if (source_ready_ && static_cast<const void *>(cloud.get()) == source_cloud_) {
-    std::swap(target_features_, source_features_);  // the next source is a new cloud
-    source_ready_ = false;
-    source_cloud_ = nullptr;
-    target_ready_ = true;
-    return;
-  }
-  target_ready_ = false;
+  holdTarget(cloud);
+  target_extracted_ = false;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::swapSourceAndTarget() {
+  static_assert(std::is_same_v<PointSource, PointTarget>, "swapSourceAndTarget needs one point type");
+  const PointCloudSourceConstPtr source = input_;
+  holdSource(target_);
+  holdTarget(source);
+  std::swap(source_features_, target_features_);
+  std::swap(source_extracted_, target_extracted_);
+  reuse_source_ = source_extracted_;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::clearSource() {
+  input_.reset();
+  source_features_.clear();
+  source_extracted_ = reuse_source_ = false;
+  converged_ = false;  // pcl::Registration::align() returns early without a source and leaves it
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::clearTarget() {
+  target_.reset();
+  this->target_cloud_updated_ = true;
+  target_features_.clear();
+  target_extracted_ = false;
+  converged_ = false;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void ContourRegistration<PointSource, PointTarget, Scalar>::setContourParams(const ContourParams &params) {
   contour_params_ = params;
-  source_ready_ = target_ready_ = false;
+  source_extracted_ = target_extracted_ = reuse_source_ = false;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
@@ -74,8 +134,9 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
   final_transformation_ = transformation_ = fallback;
   converged_ = false;
   nr_iterations_ = 0;
+  const RegistrationParams params = getRegistrationParams();
   std::string why;
-  if (!contour_params_.validate(&why) || !params_.validate(&why)) {
+  if (!contour_params_.validate(&why) || !params.validate(&why)) {
     result_ = RegistrationResult{};
     PCL_ERROR("[contour_reg::%s::computeTransformation] Invalid parameters: %s.\n", getClassName().c_str(), why.c_str());
     result_.status = RegistrationStatus::kInvalidParameters;
@@ -89,14 +150,12 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     result_.status = RegistrationStatus::kTooFewSpecialPoints;
     return;
   }
-  if (!source_ready_) {
-    extractContourFeatures(*input_, contour_params_, source_features_);
-    source_cloud_ = input_.get();
-    source_ready_ = true;
-  }
-  if (!target_ready_) {
+  if (!reuse_source_) extractContourFeatures(*input_, contour_params_, source_features_);
+  reuse_source_ = false;  // the next align() reads the source again
+  source_extracted_ = true;
+  if (!target_extracted_) {
     extractContourFeatures(*target_, contour_params_, target_features_);
-    target_ready_ = true;
+    target_extracted_ = true;
   }
 
   // The planar part of the guess, source to target.
@@ -106,7 +165,7 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
   guess2d = rigidPart(guess2d);
 
   rng_.seed(seed_);
-  registerContours(source_features_, target_features_, params_, rng_, &guess2d, buffers_, result_);
+  registerContours(source_features_, target_features_, params, rng_, &guess2d, buffers_, result_);
   nr_iterations_ = result_.ransac_iterations;
   converged_ = result_.converged;
   if (!converged_) {

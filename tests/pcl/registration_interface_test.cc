@@ -1,0 +1,198 @@
+// pcl::Registration's contract, checked the way a PCL pipeline uses a registration: only
+// through pcl::Registration<PointXYZ, PointXYZ>::Ptr, for both contour_reg classes.
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+#include <pcl/console/print.h>
+
+#include "contour_reg/coarse_to_fine_registration.h"
+#include "contour_reg/contour_registration.h"
+#include "scenes.h"
+
+namespace contour_reg {
+namespace {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+using Registration = pcl::Registration<pcl::PointXYZ, pcl::PointXYZ>;
+
+// A scan of the furnished room from `pose`, as a cloud in beam order with NaN beams.
+template <typename PointT = pcl::PointXYZ>
+void fillScan(pcl::PointCloud<PointT> &cloud, const Eigen::Isometry2d &pose, unsigned seed) {
+  static const simulation::World world = simulation::makeFurnishedRoom();
+  cloud.clear();
+  for (const Complex &c : polarCode(test::scanFrom(world, pose, 0.01, seed))) {
+    PointT p;
+    p.x = float(c.real());
+    p.y = float(c.imag());
+    p.z = 0.0f;
+    cloud.push_back(p);
+  }
+  cloud.is_dense = false;
+}
+
+template <typename PointT = pcl::PointXYZ>
+typename pcl::PointCloud<PointT>::Ptr scan(const Eigen::Isometry2d &pose, unsigned seed) {
+  auto cloud = pcl::make_shared<pcl::PointCloud<PointT>>();
+  fillScan(*cloud, pose, seed);
+  return cloud;
+}
+
+// Poses along a straight run through the room, 0.25 m apart, turning 2 degrees a step.
+Eigen::Isometry2d runPose(int k) { return test::pose2d(-1.0 + 0.25 * k, -0.3 + 0.02 * k, 10 + 2 * k); }
+
+Eigen::Isometry2d toIsometry(const Eigen::Matrix4f &t) {
+  return test::pose2d(t(0, 3), t(1, 3), std::atan2(t(1, 0), t(0, 0)) * 180 / M_PI);
+}
+
+// Translation (m) and rotation (deg) between two motions.
+std::pair<double, double> difference(const Eigen::Isometry2d &a, const Eigen::Isometry2d &b) {
+  const Eigen::Isometry2d d = a.inverse() * b;
+  return {d.translation().norm(), std::abs(std::atan2(d.linear()(1, 0), d.linear()(0, 0))) * 180 / M_PI};
+}
+
+#define EXPECT_MOTION_NEAR(a, b, metres, degrees)         \
+  do {                                                    \
+    const auto [moved_, turned_] = difference((a), (b));  \
+    EXPECT_LT(moved_, metres);                            \
+    EXPECT_LT(turned_, degrees);                          \
+  } while (0)
+
+struct ContourFactory {
+  static Registration::Ptr make() { return pcl::make_shared<ContourRegistration<pcl::PointXYZ, pcl::PointXYZ>>(); }
+};
+struct CoarseToFineFactory {
+  static Registration::Ptr make() {
+    return pcl::make_shared<CoarseToFineRegistration<pcl::PointXYZ, pcl::PointXYZ>>();
+  }
+};
+
+template <typename Factory>
+class RegistrationInterface : public ::testing::Test {};
+using Factories = ::testing::Types<ContourFactory, CoarseToFineFactory>;
+TYPED_TEST_SUITE(RegistrationInterface, Factories);
+
+// The pattern of a ROS callback that keeps two cloud objects: the last scan is copied into
+// the target, the new scan is written over the source, and both are set again.
+TYPED_TEST(RegistrationInterface, CloudsRefilledInPlaceAndSetAgainGiveTheirNewMotion) {
+  const Registration::Ptr registration = TypeParam::make();
+  auto source = pcl::make_shared<Cloud>(), target = pcl::make_shared<Cloud>();
+  fillScan(*source, runPose(0), 1);
+  for (int k = 1; k <= 6; ++k) {
+    SCOPED_TRACE(k);
+    *target = *source;
+    fillScan(*source, runPose(k), 1 + k);
+    registration->setInputTarget(target);
+    registration->setInputSource(source);
+    Cloud aligned;
+    registration->align(aligned);
+    ASSERT_TRUE(registration->hasConverged());
+    EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(k - 1).inverse() * runPose(k),
+                       0.02, 0.5);
+  }
+}
+
+TYPED_TEST(RegistrationInterface, SourceChangedInPlaceIsReadAgainByAlign) {
+  const Registration::Ptr registration = TypeParam::make();
+  auto source = scan(runPose(1), 2);
+  registration->setInputTarget(scan(runPose(0), 1));
+  registration->setInputSource(source);
+  Cloud aligned;
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  fillScan(*source, runPose(3), 4);  // not set again: align() reads the cloud it holds, as ICP does
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(0).inverse() * runPose(3), 0.02,
+                     0.5);
+}
+
+TYPED_TEST(RegistrationInterface, TargetChangedInPlaceAndSetAgainIsNewData) {
+  const Registration::Ptr registration = TypeParam::make();
+  auto target = scan(runPose(0), 1);
+  registration->setInputTarget(target);
+  registration->setInputSource(scan(runPose(2), 3));
+  Cloud aligned;
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  fillScan(*target, runPose(4), 5);
+  registration->setInputTarget(target);
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(4).inverse() * runPose(2), 0.02,
+                     0.5);
+}
+
+TYPED_TEST(RegistrationInterface, SwappingSourceAndTargetGivesTheInverse) {
+  const Registration::Ptr registration = TypeParam::make();
+  const auto a = scan(runPose(0), 1), b = scan(runPose(2), 3);
+  Cloud aligned;
+  registration->setInputTarget(a);
+  registration->setInputSource(b);
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  const Eigen::Isometry2d forward = toIsometry(registration->getFinalTransformation());
+  registration->setInputTarget(b);
+  registration->setInputSource(a);
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  const Eigen::Isometry2d backward = toIsometry(registration->getFinalTransformation());
+  EXPECT_MOTION_NEAR(forward * backward, Eigen::Isometry2d::Identity(), 0.01, 0.2);
+}
+
+TYPED_TEST(RegistrationInterface, TheSameCloudsSetTwiceGiveTheSameAnswer) {
+  const Registration::Ptr registration = TypeParam::make();
+  const auto a = scan(runPose(0), 1), b = scan(runPose(2), 3);
+  Cloud aligned;
+  Eigen::Matrix4f answers[2];
+  for (Eigen::Matrix4f &answer : answers) {
+    registration->setInputTarget(a);
+    registration->setInputSource(b);
+    registration->align(aligned);
+    ASSERT_TRUE(registration->hasConverged());
+    answer = registration->getFinalTransformation();
+  }
+  EXPECT_TRUE(answers[0].isApprox(answers[1], 1e-6f));
+  EXPECT_EQ(aligned.size(), b->size());
+}
+
+TYPED_TEST(RegistrationInterface, PointXYZIGivesTheSameAnswerAsPointXYZ) {
+  const Registration::Ptr registration = TypeParam::make();
+  Cloud aligned;
+  registration->setInputTarget(scan(runPose(0), 1));
+  registration->setInputSource(scan(runPose(2), 3));
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+
+  using CloudI = pcl::PointCloud<pcl::PointXYZI>;
+  std::shared_ptr<pcl::Registration<pcl::PointXYZI, pcl::PointXYZI>> with_intensity;
+  if (std::is_same_v<TypeParam, ContourFactory>)
+    with_intensity = pcl::make_shared<ContourRegistration<pcl::PointXYZI, pcl::PointXYZI>>();
+  else
+    with_intensity = pcl::make_shared<CoarseToFineRegistration<pcl::PointXYZI, pcl::PointXYZI>>();
+  with_intensity->setInputTarget(scan<pcl::PointXYZI>(runPose(0), 1));
+  with_intensity->setInputSource(scan<pcl::PointXYZI>(runPose(2), 3));
+  CloudI aligned_i;
+  with_intensity->align(aligned_i);
+  ASSERT_TRUE(with_intensity->hasConverged());
+  EXPECT_TRUE(with_intensity->getFinalTransformation().isApprox(registration->getFinalTransformation(), 1e-5f));
+}
+
+TYPED_TEST(RegistrationInterface, NoInputFailsWithoutCrashing) {
+  const auto verbosity = pcl::console::getVerbosityLevel();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const Registration::Ptr registration = TypeParam::make();
+  Cloud aligned;
+  registration->align(aligned);  // neither cloud set: PCL's initCompute refuses
+  EXPECT_FALSE(registration->hasConverged());
+  registration->setInputSource(scan(runPose(1), 2));
+  registration->align(aligned);  // no target yet
+  EXPECT_FALSE(registration->hasConverged());
+  registration->setInputTarget(scan(runPose(0), 1));
+  registration->align(aligned);
+  EXPECT_TRUE(registration->hasConverged());
+  pcl::console::setVerbosityLevel(verbosity);
+}
+
+}  // namespace
+}  // namespace contour_reg
