@@ -59,12 +59,12 @@ std::pair<double, double> difference(const Eigen::Isometry2d &a, const Eigen::Is
   } while (0)
 
 struct ContourFactory {
-  static Registration::Ptr make() { return pcl::make_shared<ContourRegistration<pcl::PointXYZ, pcl::PointXYZ>>(); }
+  using Concrete = ContourRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+  static Registration::Ptr make() { return pcl::make_shared<Concrete>(); }
 };
 struct CoarseToFineFactory {
-  static Registration::Ptr make() {
-    return pcl::make_shared<CoarseToFineRegistration<pcl::PointXYZ, pcl::PointXYZ>>();
-  }
+  using Concrete = CoarseToFineRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+  static Registration::Ptr make() { return pcl::make_shared<Concrete>(); }
 };
 
 template <typename Factory>
@@ -191,6 +191,57 @@ TYPED_TEST(RegistrationInterface, NoInputFailsWithoutCrashing) {
   registration->setInputTarget(scan(runPose(0), 1));
   registration->align(aligned);
   EXPECT_TRUE(registration->hasConverged());
+  pcl::console::setVerbosityLevel(verbosity);
+}
+
+// The odometry path: swapSourceAndTarget() makes the last source the target (with what was
+// extracted from it); the answer is the same as setting both clouds anew.
+TYPED_TEST(RegistrationInterface, SwapSourceAndTargetMatchesSettingThemAnew) {
+  using Concrete = typename TypeParam::Concrete;
+  const auto swapped = pcl::make_shared<Concrete>(), fresh = pcl::make_shared<Concrete>();
+  const auto a = scan(runPose(0), 1), b = scan(runPose(2), 3), c = scan(runPose(4), 5);
+  Cloud aligned;
+  swapped->setInputTarget(a);
+  swapped->setInputSource(b);
+  swapped->align(aligned);
+  ASSERT_TRUE(swapped->hasConverged());
+  swapped->swapSourceAndTarget();  // target b; the source is a: aligning now gives a onto b
+  swapped->align(aligned);
+  ASSERT_TRUE(swapped->hasConverged());
+  EXPECT_MOTION_NEAR(toIsometry(swapped->getFinalTransformation()), runPose(2).inverse() * runPose(0), 0.02, 0.5);
+  swapped->swapSourceAndTarget();  // back: target a, source b
+  swapped->swapSourceAndTarget();  // target b, source a
+  swapped->setInputSource(c);
+  swapped->align(aligned);
+  fresh->setInputTarget(b);
+  fresh->setInputSource(c);
+  fresh->align(aligned);
+  ASSERT_TRUE(swapped->hasConverged());
+  ASSERT_TRUE(fresh->hasConverged());
+  EXPECT_TRUE(swapped->getFinalTransformation().isApprox(fresh->getFinalTransformation(), 1e-6f));
+}
+
+TYPED_TEST(RegistrationInterface, ClearingAndSettingAgainWorks) {
+  const auto verbosity = pcl::console::getVerbosityLevel();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const auto registration = pcl::make_shared<typename TypeParam::Concrete>();
+  const auto a = scan(runPose(0), 1), b = scan(runPose(2), 3);
+  Cloud aligned;
+  registration->setInputTarget(a);
+  registration->setInputSource(b);
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  registration->clearTarget();
+  registration->align(aligned);
+  EXPECT_FALSE(registration->hasConverged());  // no target: PCL refuses, and nothing of the last answer stays
+  registration->setInputTarget(a);
+  registration->clearSource();
+  registration->align(aligned);
+  EXPECT_FALSE(registration->hasConverged());
+  registration->setInputSource(b);
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(0).inverse() * runPose(2), 0.02, 0.5);
   pcl::console::setVerbosityLevel(verbosity);
 }
 
