@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 #include <pcl/console/print.h>
 
+#include "allocation_counter.h"
 #include "contour_reg/contour_registration.h"
 #include "contour_reg/core/contour.h"
 #include "contour_reg/core/contour_features.h"
@@ -13,7 +14,6 @@
 #include "contour_reg/core/direction_histogram.h"
 #include "contour_reg/core/registration.h"
 #include "contour_reg/odometry/scan_matcher.h"
-#include "allocation_counter.h"
 #include "scenes.h"
 
 namespace contour_reg::bench {
@@ -40,8 +40,8 @@ void BM_Equalization(benchmark::State &state) {  // stage B
 
 void BM_MatchedFilter(benchmark::State &state) {  // stage C: corner filter bank (eqs. 12-13)
   const ScanPair pair = scanPair(int(state.range(0)));
-  const auto contours = equalizeSegments(splitIntoSegments(polarCode(pair.source), kParams.segmentation),
-                                         kParams.equalization);
+  const auto contours =
+      equalizeSegments(splitIntoSegments(polarCode(pair.source), kParams.segmentation), kParams.equalization);
   for (auto _ : state)
     for (const EqualizedContour &c : contours) benchmark::DoNotOptimize(filterCorners(c, kParams.corner_filter));
 }
@@ -74,7 +74,8 @@ void BM_Features(benchmark::State &state) {  // stages A-C of one scan
 
 void BM_Correspondence(benchmark::State &state) {  // stage D (eq. 14)
   const ScanPair pair = scanPair(int(state.range(0)));
-  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams),
+                        b = extractContourFeatures(pair.source, kParams);
   const CorrespondenceParams params;
   const std::size_t allocations = allocationCount();
   for (auto _ : state) benchmark::DoNotOptimize(findCorrespondences(b.special_points, a.special_points, params));
@@ -83,7 +84,8 @@ void BM_Correspondence(benchmark::State &state) {  // stage D (eq. 14)
 
 void BM_RansacAndRefinement(benchmark::State &state) {  // stages D-F + refinement, features given
   const ScanPair pair = scanPair(int(state.range(0)));
-  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams),
+                        b = extractContourFeatures(pair.source, kParams);
   RegistrationParams params;
   params.refinement.enabled = state.range(1) != 0;
   std::mt19937 rng;
@@ -97,7 +99,8 @@ void BM_RansacAndRefinement(benchmark::State &state) {  // stages D-F + refineme
 
 void BM_DirectionHypotheses(benchmark::State &state) {  // the fallback's corner-free motion hypotheses
   const ScanPair pair = scanPair(int(state.range(0)));
-  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams),
+                        b = extractContourFeatures(pair.source, kParams);
   const DirectionHistogramParams params;
   std::size_t count = 0;
   for (auto _ : state) {
@@ -110,7 +113,8 @@ void BM_DirectionHypotheses(benchmark::State &state) {  // the fallback's corner
 
 void BM_LocalFallback(benchmark::State &state) {  // registration when the corners cannot decide
   const ScanPair pair = scanPair(int(state.range(0)));
-  const ContourFeatures a = extractContourFeatures(pair.target, kParams), b = extractContourFeatures(pair.source, kParams);
+  const ContourFeatures a = extractContourFeatures(pair.target, kParams),
+                        b = extractContourFeatures(pair.source, kParams);
   RegistrationParams params;
   params.min_special_points = 1 << 20;  // no scan has that many: the corners stand aside
   std::mt19937 rng;
@@ -121,7 +125,8 @@ void BM_LocalFallback(benchmark::State &state) {  // registration when the corne
     benchmark::DoNotOptimize(result.transform.data());
   }
   state.counters["converged"] = result.converged;
-  state.counters["error_mm"] = 1000.0 * std::hypot(result.transform(0, 2) - pair.truth.x(), result.transform(1, 2) - pair.truth.y());
+  state.counters["error_mm"] =
+      1000.0 * std::hypot(result.transform(0, 2) - pair.truth.x(), result.transform(1, 2) - pair.truth.y());
 }
 
 // A matcher on a pair whose clouds are new every iteration (nothing cached): both scans'

@@ -26,7 +26,8 @@ inline ScanPair scanPair(int beams) {
   Eigen::Isometry2d a = Eigen::Isometry2d::Identity(), b = Eigen::Isometry2d::Identity();
   b.translate(Eigen::Vector2d(0.15, 0.05));
   b.rotate(3.0 * M_PI / 180.0);
-  return {simulation::simulateScan(world, a, model, rng), simulation::simulateScan(world, b, model, rng),
+  return {simulation::simulateScan(world, a, model, rng),
+          simulation::simulateScan(world, b, model, rng),
           {0.15, 0.05, 3.0 * M_PI / 180.0}};
 }
 

@@ -45,15 +45,20 @@ struct MethodOptions {
 };
 
 inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
-  command.add_option("--contour-step", options.contour_step, "Contour: equalized element length (m)")->capture_default_str();
-  command.add_option("--threshold", options.threshold, "Contour: corner response threshold")->capture_default_str();
-  command.add_option("--candidates", options.candidates, "Contour: candidate targets per special point")->capture_default_str();
-  command.add_option("--arm", options.arm_elements, "Contour: elements per corner arm")->capture_default_str();
-  command.add_option("--local-fallback", options.local_fallback,
-                     "Contour: min contour overlap to accept the refined guess when corners cannot decide (0: off)")
+  command.add_option("--contour-step", options.contour_step, "Contour: equalized element length (m)")
       ->capture_default_str();
-  command.add_option("--probe-distance", options.probe_distance,
-                     "Contour: a motion of the local fallback or of few corners must settle back when refined from this far off along its weakest direction (m, 0: no check)")
+  command.add_option("--threshold", options.threshold, "Contour: corner response threshold")->capture_default_str();
+  command.add_option("--candidates", options.candidates, "Contour: candidate targets per special point")
+      ->capture_default_str();
+  command.add_option("--arm", options.arm_elements, "Contour: elements per corner arm")->capture_default_str();
+  command
+      .add_option("--local-fallback", options.local_fallback,
+                  "Contour: min contour overlap to accept the refined guess when corners cannot decide (0: off)")
+      ->capture_default_str();
+  command
+      .add_option("--probe-distance", options.probe_distance,
+                  "Contour: a motion of the local fallback or of few corners must settle back when refined from this "
+                  "far off along its weakest direction (m, 0: no check)")
       ->capture_default_str();
   command.add_option("--icp-max-distance", options.icp_max_correspondence, "ICP/GICP: max correspondence distance (m)")
       ->capture_default_str();

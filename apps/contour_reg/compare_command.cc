@@ -56,8 +56,8 @@ struct Row {
 
 std::string stemOf(const std::string &path) {
   fs::path p(path);
-  while (p.has_extension() && (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" ||
-                               p.extension() == ".bag"))
+  while (p.has_extension() &&
+         (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" || p.extension() == ".bag"))
     p = p.stem();
   return p.filename().string();
 }
@@ -88,15 +88,17 @@ void writeTables(const std::vector<Row> &rows, const CompareOptions &options) {
     throw io::ReadError(options.out + ": cannot write table.md / results.csv");
   }
   char header[512];
-  std::snprintf(header, sizeof header,
-                "| input | method | failed / registrations | local rel. transl. m | local rel. rot. deg | all rel. transl. m "
-                "| end-point %% of path | drift %% (10 m) | ATE m | median ms | p95 ms |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::snprintf(
+      header, sizeof header,
+      "| input | method | failed / registrations | local rel. transl. m | local rel. rot. deg | all rel. transl. m "
+      "| end-point %% of path | drift %% (10 m) | ATE m | median ms | p95 ms |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::string text = header;
-  std::fprintf(csv, "input,method,registrations,failures,degenerate,local_relations,local_translation_mean_m,"
-                    "local_translation_std_m,local_rotation_mean_deg,local_rotation_std_deg,all_relations,"
-                    "all_translation_mean_m,all_rotation_mean_deg,end_point_error_m,end_point_percent,drift_percent,"
-                    "ate_m,median_ms,p95_ms\n");
+  std::fprintf(csv,
+               "input,method,registrations,failures,degenerate,local_relations,local_translation_mean_m,"
+               "local_translation_std_m,local_rotation_mean_deg,local_rotation_std_deg,all_relations,"
+               "all_translation_mean_m,all_rotation_mean_deg,end_point_error_m,end_point_percent,drift_percent,"
+               "ate_m,median_ms,p95_ms\n");
   for (const Row &row : rows) {
     const auto &e = row.evaluation;
     auto opt = [](bool has, double v) { return has ? std::optional<double>(v) : std::nullopt; };
@@ -188,8 +190,9 @@ int runCompare(const CompareOptions &options) {
       std::fprintf(stderr, "  done: %s / %s (%zu failed)\n", input.name.c_str(), jobs[j].method.c_str(), row.failures);
     }
   };
-  const unsigned threads = std::max(1u, std::min<unsigned>(options.jobs ? options.jobs : std::thread::hardware_concurrency(),
-                                                           static_cast<unsigned>(jobs.size())));
+  const unsigned threads =
+      std::max(1u, std::min<unsigned>(options.jobs ? options.jobs : std::thread::hardware_concurrency(),
+                                      static_cast<unsigned>(jobs.size())));
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread &t : pool) t.join();
@@ -225,7 +228,8 @@ int runCompare(const CompareOptions &options) {
 
 void addCompareCommand(CLI::App &app) {
   auto options = std::make_shared<CompareOptions>();
-  CLI::App *command = app.add_subcommand("compare", "Run several methods on the same scans: one table of accuracy and speed");
+  CLI::App *command =
+      app.add_subcommand("compare", "Run several methods on the same scans: one table of accuracy and speed");
   command->add_option("inputs", options->inputs, "CARMEN logs, ROS bags or PCD folders")->required();
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
   command->add_option("--gt", options->ground_truths,

@@ -12,7 +12,8 @@ std::vector<std::string> DebugDumper::dumpPair(const io::ScanLog &log, std::size
                                                const std::vector<std::string> &methods) const {
   namespace fs = std::filesystem;
   const LaserScan &a = log.entries[target].scan, &b = log.entries[source].scan;
-  const ContourFeatures fa = extractContourFeatures(a, settings_.contour), fb = extractContourFeatures(b, settings_.contour);
+  const ContourFeatures fa = extractContourFeatures(a, settings_.contour),
+                        fb = extractContourFeatures(b, settings_.contour);
   std::mt19937 rng(42);  // ContourRegistration's default seed
   const RegistrationResult result = registerContours(fb, fa, settings_.registration, rng);
   const std::string stem = std::to_string(target) + "_" + std::to_string(source);

@@ -50,7 +50,9 @@ int runEvaluate(const EvaluateOptions &options) {
 void addEvaluateCommand(CLI::App &app) {
   auto options = std::make_shared<EvaluateOptions>();
   CLI::App *command = app.add_subcommand("evaluate", "Accuracy of a TUM trajectory against ground truth or relations");
-  command->add_option("trajectory", options->trajectory, "Estimated trajectory (TUM)")->required()->check(CLI::ExistingFile);
+  command->add_option("trajectory", options->trajectory, "Estimated trajectory (TUM)")
+      ->required()
+      ->check(CLI::ExistingFile);
   auto *gt = command->add_option("--gt", options->ground_truth, "Ground truth (TUM)")->check(CLI::ExistingFile);
   auto *rel = command->add_option("--relations", options->relations, "Kuemmerle et al. relations file")
                   ->check(CLI::ExistingFile);

@@ -1,8 +1,8 @@
 // contour_reg experiment: the paper's experiment (Table 1) on the built-in office or any
 // map: every path x LIDAR rate x arrival, each method on the same simulated scans.
 #include <cstdio>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -41,7 +41,8 @@ std::string rateName(double rate) {
   return text;
 }
 
-std::string describe(const ExperimentOptions &options, const Scenario &scenario, const experiment::ExperimentSettings &s) {
+std::string describe(const ExperimentOptions &options, const Scenario &scenario,
+                     const experiment::ExperimentSettings &s) {
   std::ostringstream text;
   text << "Map " << scenario.map_name << "; LIDAR " << s.run.lidar.name << " (" << s.run.lidar.beams << " beams, "
        << s.run.lidar.range_max << " m, noise " << s.run.lidar.range_noise << " m); " << options.scenario.motion
@@ -79,7 +80,8 @@ void writeTables(const ExperimentOptions &options, const std::string &descriptio
     table << "\n";
   };
   // One table row: the cell of every path, written into `value` by `format`.
-  auto row = [&](double rate, const std::string &method, const std::function<void(const experiment::CellSummary &)> &format) {
+  auto row = [&](double rate, const std::string &method,
+                 const std::function<void(const experiment::CellSummary &)> &format) {
     table << "| " << rateName(rate) << " Hz | " << method << " |";
     for (const std::string &path : options.paths) {
       const auto found = by_key.find({rate, method, path});
@@ -128,8 +130,9 @@ void writeTables(const ExperimentOptions &options, const std::string &descriptio
   }
   std::fputs(table.str().c_str(), file);
   std::fclose(file);
-  std::fprintf(csv, "path,rate_hz,arrival,method,path_length_m,scans,registrations,failures,end_point_error_m,"
-                    "end_point_percent,median_ms\n");
+  std::fprintf(csv,
+               "path,rate_hz,arrival,method,path_length_m,scans,registrations,failures,end_point_error_m,"
+               "end_point_percent,median_ms\n");
   for (const auto &r : results)
     std::fprintf(csv, "%s,%g,%d,%s,%.4f,%zu,%zu,%zu,%.6f,%.4f,%.4f\n", r.path.c_str(), r.rate, r.arrival,
                  r.method.c_str(), r.path_length, r.scans, r.registrations, r.failures, r.end_point_error,

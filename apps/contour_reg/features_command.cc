@@ -37,8 +37,8 @@ int runFeatures(const FeaturesOptions &options) {
     const ContourFeatures features = extractContourFeatures(scan, params);
     int index = 0;
     for (const SpecialPoint &p : features.special_points)
-      std::printf("%d %.6f %d %.4f %.4f %.2f %.2f %.4f %+d\n", k, scan.stamp, index++, p.position.x(),
-                  p.position.y(), p.corner_angle * 180.0 / M_PI, p.orientation * 180.0 / M_PI, p.response, p.turn);
+      std::printf("%d %.6f %d %.4f %.4f %.2f %.2f %.4f %+d\n", k, scan.stamp, index++, p.position.x(), p.position.y(),
+                  p.corner_angle * 180.0 / M_PI, p.orientation * 180.0 / M_PI, p.response, p.turn);
     if (!options.all)
       std::fprintf(stderr, "scan %d: %zu beams, %zu segments, %zu special points\n", k, scan.ranges.size(),
                    features.segments.size(), features.special_points.size());
@@ -51,10 +51,13 @@ int runFeatures(const FeaturesOptions &options) {
 void addFeaturesCommand(CLI::App &app) {
   auto options = std::make_shared<FeaturesOptions>();
   CLI::App *command = app.add_subcommand("features", "Print the special points (corners) of scans of a log");
-  command->add_option("input", options->input, "CARMEN log (.clf/.log, plain or .gz)")->required()->check(CLI::ExistingFile);
+  command->add_option("input", options->input, "CARMEN log (.clf/.log, plain or .gz)")
+      ->required()
+      ->check(CLI::ExistingFile);
   command->add_option("--scan", options->scan, "Index of the scan, in stamp order")->capture_default_str();
   command->add_flag("--all", options->all, "Every scan of the log");
-  command->add_option("--max-range", options->max_range, "Readings at or above are no-return (m)")->capture_default_str();
+  command->add_option("--max-range", options->max_range, "Readings at or above are no-return (m)")
+      ->capture_default_str();
   command->callback([options]() { runCommand([&] { return runFeatures(*options); }); });
 }
 

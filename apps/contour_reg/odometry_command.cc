@@ -54,7 +54,8 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
               options.input.c_str(), log.entries.size(), run.stats.registrations, options.method.c_str(),
               run.stats.failures, run.stats.degenerate, percentile(run.stats.milliseconds, 0.5),
               percentile(run.stats.milliseconds, 0.95));
-  for (const auto &[reason, count] : run.stats.failure_reasons) std::printf("  failed: %s: %zu\n", reason.c_str(), count);
+  for (const auto &[reason, count] : run.stats.failure_reasons)
+    std::printf("  failed: %s: %zu\n", reason.c_str(), count);
   std::printf("trajectory: %s\n", options.output.c_str());
   return 0;
 }
@@ -65,7 +66,9 @@ void addOdometryCommand(CLI::App &app) {
   auto options = std::make_shared<OdometryCommandOptions>();
   CLI::App *command = app.add_subcommand("odometry", "Laser odometry: chain scan registrations into a TUM trajectory");
   command->add_option("input", options->input, "CARMEN log, ROS bag (.bag) or folder of PCD scans")->required();
-  command->add_option("--method,-m", options->method, "Registration method")->check(methodCheck())->capture_default_str();
+  command->add_option("--method,-m", options->method, "Registration method")
+      ->check(methodCheck())
+      ->capture_default_str();
   command->add_option("--output,-o", options->output, "TUM trajectory to write")->required();
   addGuessOption(*command, options->guess);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
@@ -75,7 +78,8 @@ void addOdometryCommand(CLI::App &app) {
   command->add_option("--keyframe-angle", options->keyframe_angle_deg, "New keyframe after this turn (deg)")
       ->capture_default_str();
   command->add_option("--debug-dir", options->debug_dir, "Write debug images of failed registrations here");
-  command->add_option("--debug-every", options->debug_every, "With --debug-dir, also every N-th pair (0: failures only)")
+  command
+      ->add_option("--debug-every", options->debug_every, "With --debug-dir, also every N-th pair (0: failures only)")
       ->capture_default_str();
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->methods);

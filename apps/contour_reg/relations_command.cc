@@ -26,7 +26,7 @@ struct RelationsOptions {
   std::vector<std::string> methods = {"contour", "contour+icp", "icp", "ndt2d"};
   double max_dt = 5.0, tolerance = 0.10, tolerance_deg = 2.0;
   std::size_t limit = 0;
-  std::string pairs_csv;     // one row per relation and method, when set
+  std::string pairs_csv;         // one row per relation and method, when set
   std::size_t log_pose_gap = 0;  // > 0: pairs k, k + gap referenced by the log's own poses
   io::LogReadOptions read;
   MethodOptions method_options;
@@ -74,8 +74,10 @@ int runRelations(const RelationsOptions &options) {
       options.log_pose_gap > 0 ? pairsFromLogPoses(log, options.log_pose_gap) : pairsFromRelations(log, options);
   if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
   if (options.log_pose_gap > 0)
-    std::printf("%s: %zu pairs of scans %zu apart, referenced by the log's poses, zero guess, success = within %.2f m and %.1f deg\n\n",
-                options.input.c_str(), pairs.size(), options.log_pose_gap, options.tolerance, options.tolerance_deg);
+    std::printf(
+        "%s: %zu pairs of scans %zu apart, referenced by the log's poses, zero guess, success = within %.2f m and %.1f "
+        "deg\n\n",
+        options.input.c_str(), pairs.size(), options.log_pose_gap, options.tolerance, options.tolerance_deg);
   else
     std::printf("%s: %zu relations with |t2 - t1| <= %.1f s, zero guess, success = within %.2f m and %.1f deg\n\n",
                 options.input.c_str(), pairs.size(), options.max_dt, options.tolerance, options.tolerance_deg);
@@ -83,9 +85,11 @@ int runRelations(const RelationsOptions &options) {
   if (!options.pairs_csv.empty()) {
     csv = std::fopen(options.pairs_csv.c_str(), "w");
     if (!csv) throw std::runtime_error("cannot write " + options.pairs_csv);
-    std::fprintf(csv, "method,first,second,t1,t2,dx,dy,dyaw,x,y,yaw,converged,recovered,error_m,error_deg,ms,status,reason\n");
+    std::fprintf(
+        csv, "method,first,second,t1,t2,dx,dy,dyaw,x,y,yaw,converged,recovered,error_m,error_deg,ms,status,reason\n");
   }
-  std::printf("| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
+  std::printf(
+      "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const std::string &name : options.methods) {
     auto matcher = odometry::makeScanMatcher(name, options.method_options.settings());
@@ -106,10 +110,10 @@ int runRelations(const RelationsOptions &options) {
       if (!match.converged) ++reasons[match.status];
       wrong += match.converged && !ok;
       if (csv)
-        std::fprintf(csv, "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\"\n", name.c_str(),
-                     pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2), t(1, 2),
-                     yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er,
-                     match.milliseconds, match.converged ? "converged" : match.status.c_str(), match.reason.c_str());
+        std::fprintf(csv, "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\"\n",
+                     name.c_str(), pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2),
+                     t(1, 2), yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er, match.milliseconds,
+                     match.converged ? "converged" : match.status.c_str(), match.reason.c_str());
       if (match.converged && ok) {
         ++recovered;
         error_sum += et;
@@ -119,7 +123,8 @@ int runRelations(const RelationsOptions &options) {
     std::printf("| %s | %.1f %% | %.1f %% | %.1f %% | %.3f | %.3f | %.3f |\n", name.c_str(), 100 * recovered / n,
                 100 * converged / n, 100 * wrong / n, recovered ? error_sum / recovered : 0.0, percentile(ms, 0.5),
                 percentile(ms, 0.95));
-    for (const auto &[reason, count] : reasons) std::fprintf(stderr, "  %s failed: %s: %d\n", name.c_str(), reason.c_str(), count);
+    for (const auto &[reason, count] : reasons)
+      std::fprintf(stderr, "  %s failed: %s: %d\n", name.c_str(), reason.c_str(), count);
     std::fflush(stdout);
   }
   if (csv) std::fclose(csv);

@@ -38,7 +38,8 @@ std::map<std::string, std::vector<Eigen::Vector2d>> readPathsFile(const std::str
 }  // namespace
 
 void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
-  command.add_option("--map", options.map, "office (built in) or a map: map_server YAML, or a PGM/PNG with --resolution")
+  command
+      .add_option("--map", options.map, "office (built in) or a map: map_server YAML, or a PGM/PNG with --resolution")
       ->capture_default_str();
   command.add_option("--resolution", options.resolution, "Metres per pixel of a map image given without YAML")
       ->capture_default_str()
@@ -52,7 +53,8 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
       ->check(CLI::IsMember({"stop-and-go", "continuous"}))
       ->capture_default_str();
   command.add_option("--speed", options.speed, "Robot speed (m/s)")->capture_default_str()->check(CLI::PositiveNumber);
-  command.add_option("--odometry-noise", options.odometry_noise, "Relative wheel odometry noise")->capture_default_str();
+  command.add_option("--odometry-noise", options.odometry_noise, "Relative wheel odometry noise")
+      ->capture_default_str();
 }
 
 Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::string> &names) {
@@ -65,11 +67,11 @@ Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::str
     simulation::MapReadOptions read;
     read.resolution = options.resolution;
     scenario.map_name = std::filesystem::path(options.map).stem().string();
-    scenario.world.setGrid(std::make_shared<simulation::OccupancyGrid>(simulation::readOccupancyGrid(options.map, read)));
+    scenario.world.setGrid(
+        std::make_shared<simulation::OccupancyGrid>(simulation::readOccupancyGrid(options.map, read)));
   }
-  const auto from_file = options.paths_file.empty()
-                             ? std::map<std::string, std::vector<Eigen::Vector2d>>()
-                             : readPathsFile(options.paths_file);
+  const auto from_file = options.paths_file.empty() ? std::map<std::string, std::vector<Eigen::Vector2d>>()
+                                                    : readPathsFile(options.paths_file);
   for (const std::string &name : names) {
     std::vector<Eigen::Vector2d> waypoints;
     if (!options.paths_file.empty()) {
@@ -93,12 +95,11 @@ Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::str
 
 simulation::RunSettings runSettings(const ScenarioOptions &options, double rate, unsigned seed) {
   simulation::RunSettings settings;
-  settings.lidar = options.lidar == "ydlidar" ? simulation::LidarModel::ydlidarX4()
-                                              : simulation::LidarModel::hokuyoUtm30lx();
+  settings.lidar =
+      options.lidar == "ydlidar" ? simulation::LidarModel::ydlidarX4() : simulation::LidarModel::hokuyoUtm30lx();
   settings.rate = rate;
   settings.speed = options.speed;
-  settings.motion = options.motion == "continuous" ? simulation::Motion::kContinuous
-                                                   : simulation::Motion::kStopAndGo;
+  settings.motion = options.motion == "continuous" ? simulation::Motion::kContinuous : simulation::Motion::kStopAndGo;
   settings.odometry_noise = options.odometry_noise;
   settings.seed = seed;
   return settings;

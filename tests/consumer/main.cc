@@ -34,8 +34,10 @@ Cloud::Ptr roomScan(double x, double y, double yaw) {
 
 // The core API on the same scans: what the PCL class must reproduce.
 Eigen::Matrix3d coreMotion(const Cloud &target, const Cloud &source) {
-  const contour_reg::ContourFeatures t = contour_reg::extractContourFeatures(contour_reg::polarCodeFromCloud(target), {});
-  const contour_reg::ContourFeatures s = contour_reg::extractContourFeatures(contour_reg::polarCodeFromCloud(source), {});
+  const contour_reg::ContourFeatures t =
+      contour_reg::extractContourFeatures(contour_reg::polarCodeFromCloud(target), {});
+  const contour_reg::ContourFeatures s =
+      contour_reg::extractContourFeatures(contour_reg::polarCodeFromCloud(source), {});
   std::mt19937 rng(42);
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
   const contour_reg::RegistrationResult result = contour_reg::registerContours(s, t, {}, rng, &identity);

@@ -40,8 +40,15 @@ TEST(PolarCode, MarksInvalidBeamsAsNaN) {
   scan.angle_increment = 0.01;
   scan.range_min = 0.1;
   scan.range_max = 10.0;
-  scan.ranges = {1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
-                 0.0f, -1.0f, 0.05f, 10.0f, 12.0f, 9.99f};
+  scan.ranges = {1.0f,
+                 std::numeric_limits<float>::quiet_NaN(),
+                 std::numeric_limits<float>::infinity(),
+                 0.0f,
+                 -1.0f,
+                 0.05f,
+                 10.0f,
+                 12.0f,
+                 9.99f};
   const ComplexSequence code = polarCode(scan);
   ASSERT_EQ(code.size(), scan.ranges.size());
   EXPECT_TRUE(isFinite(code[0]));

@@ -15,10 +15,10 @@ namespace {
 
 RegistrationResult registerFrom(const simulation::World &world, const Eigen::Isometry2d &motion, double noise,
                                 unsigned seed) {
-  const ContourFeatures target = extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 0), noise, seed),
-                                                        ContourParams{});
-  const ContourFeatures source = extractContourFeatures(test::scanFrom(world, motion, noise, seed + 1000),
-                                                        ContourParams{});
+  const ContourFeatures target =
+      extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 0), noise, seed), ContourParams{});
+  const ContourFeatures source =
+      extractContourFeatures(test::scanFrom(world, motion, noise, seed + 1000), ContourParams{});
   std::mt19937 rng(seed);
   return registerContours(source, target, RegistrationParams{}, rng);
 }

@@ -8,9 +8,7 @@ namespace contour_reg {
 namespace {
 
 // An L-shaped polyline with irregular spacing: 3 m along x, then 2 m along y.
-ComplexSequence lShape() {
-  return {{0, 0}, {0.3, 0}, {1.1, 0}, {1.15, 0}, {3, 0}, {3, 0.7}, {3, 0.75}, {3, 2}};
-}
+ComplexSequence lShape() { return {{0, 0}, {0.3, 0}, {1.1, 0}, {1.15, 0}, {3, 0}, {3, 0.7}, {3, 0.75}, {3, 2}}; }
 
 // Arc length of point q on the L shape (q must lie on it).
 double arcOnLShape(const Complex &q) { return std::abs(q.imag()) < 1e-12 ? q.real() : 3.0 + q.imag(); }
@@ -24,8 +22,7 @@ TEST(Equalization, FixedCountGivesEqualPiecesAndKeepsTheLength) {  // eqs. (3)-(
   for (std::size_t r = 0; r < contour.vertices.size(); ++r)
     EXPECT_NEAR(arcOnLShape(contour.vertices[r]), r * contour.step, 1e-9) << "vertex " << r;
   // The bend falls on a vertex, so every element is a straight chord of length e.
-  for (std::size_t r = 0; r < 50; ++r)
-    EXPECT_NEAR(std::abs(contour.element(r)), contour.step, 1e-9) << "element " << r;
+  for (std::size_t r = 0; r < 50; ++r) EXPECT_NEAR(std::abs(contour.element(r)), contour.step, 1e-9) << "element " << r;
   EXPECT_EQ(contour.vertices.front(), points.front());
   EXPECT_NEAR(std::abs(contour.vertices.back() - points.back()), 0.0, 1e-9);
 }

@@ -53,14 +53,16 @@ class RegistrationTest : public ::testing::TestWithParam<Variant> {
       Eigen::Vector2d shift(u(prng), u(prng));
       if (shift.norm() > 1.0) shift.normalize();
       const Eigen::Isometry2d motion = test::pose2d(shift.x(), shift.y(), yaw);
-      const ContourFeatures a = extractContourFeatures(test::scanFrom(world, target_pose, noise, trial), ContourParams{});
+      const ContourFeatures a =
+          extractContourFeatures(test::scanFrom(world, target_pose, noise, trial), ContourParams{});
       const ContourFeatures b =
           extractContourFeatures(test::scanFrom(world, target_pose * motion, noise, 100 + trial), ContourParams{});
       for (bool inverse : {false, true}) {
         SCOPED_TRACE(testing::Message() << "trial " << trial << (inverse ? " inverse" : " forward"));
         const Eigen::Isometry2d expected = inverse ? motion.inverse() : motion;
         std::mt19937 rng(1);
-        const RegistrationResult r = inverse ? registerContours(a, b, params(), rng) : registerContours(b, a, params(), rng);
+        const RegistrationResult r =
+            inverse ? registerContours(a, b, params(), rng) : registerContours(b, a, params(), rng);
         if (!r.converged) {
           EXPECT_FALSE(r.reason.empty());
           continue;
@@ -89,19 +91,21 @@ TEST_P(RegistrationTest, RecoversKnownMotionsWithOneCentimetreNoise) {
   EXPECT_GE(checkMotions(0.01, 0.05, 1.0, 10), minimumConverged(std::get<0>(GetParam())));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Variants, RegistrationTest,
-    ::testing::Combine(::testing::Values(TransformModel::kRigid, TransformModel::kAffine),
-                       ::testing::Values(FragmentDistance::kModulus, FragmentDistance::kReal)),
-    [](const ::testing::TestParamInfo<Variant> &variant) {
-      return std::string(std::get<0>(variant.param) == TransformModel::kRigid ? "Rigid" : "Affine") +
-             (std::get<1>(variant.param) == FragmentDistance::kModulus ? "Modulus" : "Real");
-    });
+INSTANTIATE_TEST_SUITE_P(Variants, RegistrationTest,
+                         ::testing::Combine(::testing::Values(TransformModel::kRigid, TransformModel::kAffine),
+                                            ::testing::Values(FragmentDistance::kModulus, FragmentDistance::kReal)),
+                         [](const ::testing::TestParamInfo<Variant> &variant) {
+                           return std::string(std::get<0>(variant.param) == TransformModel::kRigid ? "Rigid"
+                                                                                                   : "Affine") +
+                                  (std::get<1>(variant.param) == FragmentDistance::kModulus ? "Modulus" : "Real");
+                         });
 
 TEST(Registration, SameSeedGivesTheSameAnswer) {
   const simulation::World world = simulation::makeFurnishedRoom();
-  const ContourFeatures a = extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 10), 0.01, 1), ContourParams{});
-  const ContourFeatures b = extractContourFeatures(test::scanFrom(world, test::pose2d(0.5, 0.2, 30), 0.01, 2), ContourParams{});
+  const ContourFeatures a =
+      extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 10), 0.01, 1), ContourParams{});
+  const ContourFeatures b =
+      extractContourFeatures(test::scanFrom(world, test::pose2d(0.5, 0.2, 30), 0.01, 2), ContourParams{});
   std::mt19937 rng1(5), rng2(5);
   const RegistrationResult r1 = registerContours(b, a, RegistrationParams{}, rng1);
   const RegistrationResult r2 = registerContours(b, a, RegistrationParams{}, rng2);
@@ -111,7 +115,8 @@ TEST(Registration, SameSeedGivesTheSameAnswer) {
 }
 
 void expectNotConverged(const simulation::World &world, const Eigen::Isometry2d &motion) {
-  const ContourFeatures a = extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1), ContourParams{});
+  const ContourFeatures a =
+      extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1), ContourParams{});
   const ContourFeatures b = extractContourFeatures(test::scanFrom(world, motion, 0.01, 2), ContourParams{});
   std::mt19937 rng(1);
   const RegistrationResult r = registerContours(b, a, RegistrationParams{}, rng);
@@ -132,7 +137,8 @@ TEST(Registration, FeaturelessCircleDoesNotConverge) {
   simulation::World circle;
   const int sides = 720;  // a circle of radius 4 m as a fine polygon, seen from inside
   std::vector<Eigen::Vector2d> ring;
-  for (int k = 0; k < sides; ++k) ring.emplace_back(4.0 * std::cos(2 * M_PI * k / sides), 4.0 * std::sin(2 * M_PI * k / sides));
+  for (int k = 0; k < sides; ++k)
+    ring.emplace_back(4.0 * std::cos(2 * M_PI * k / sides), 4.0 * std::sin(2 * M_PI * k / sides));
   circle.addPolygon(ring);
   expectNotConverged(circle, test::pose2d(0.3, -0.2, 10));
 }
@@ -166,7 +172,8 @@ TEST(Registration, ReusedBuffersGiveTheSameAnswersAsNewOnes) {
   for (int k = 0; k < 4; ++k) scans.push_back(test::scanFrom(room, test::pose2d(0.2 * k, 0.1 * k, 4.0 * k), 0.01, k));
   scans.push_back(test::scanFrom(corridor, test::pose2d(0.0, 0.0, 0.0), 0.01, 10));
   scans.push_back(test::scanFrom(corridor, test::pose2d(0.3, 0.0, 0.0), 0.01, 11));
-  for (int k = 0; k < 3; ++k) scans.push_back(test::scanFrom(room, test::pose2d(0.3 * k, -0.2 * k, -5.0 * k), 0.01, 20 + k));
+  for (int k = 0; k < 3; ++k)
+    scans.push_back(test::scanFrom(room, test::pose2d(0.3 * k, -0.2 * k, -5.0 * k), 0.01, 20 + k));
 
   const ContourParams contour_params;
   const RegistrationParams params;
@@ -184,9 +191,9 @@ TEST(Registration, ReusedBuffersGiveTheSameAnswersAsNewOnes) {
     rng.seed(7);
     registerContours(source, target, params, rng, nullptr, buffers, result);
     fresh_rng.seed(7);
-    const RegistrationResult fresh = registerContours(extractContourFeatures(scans[k], contour_params),
-                                                      extractContourFeatures(scans[k - 1], contour_params), params,
-                                                      fresh_rng);
+    const RegistrationResult fresh =
+        registerContours(extractContourFeatures(scans[k], contour_params),
+                         extractContourFeatures(scans[k - 1], contour_params), params, fresh_rng);
     EXPECT_EQ(result.converged, fresh.converged);
     EXPECT_EQ(result.status, fresh.status);
     EXPECT_EQ(result.reason, fresh.reason);

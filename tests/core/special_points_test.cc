@@ -98,7 +98,8 @@ TEST(SpecialPoints, EmptyAllInvalidAndStraightWallGiveNone) {
                   .special_points.empty());
   simulation::World wall;
   wall.addSegment({3.0, -20.0}, {3.0, 20.0});
-  const ContourFeatures features = extractContourFeatures(test::scanFrom(wall, test::pose2d(0, 0, 0), 0.01), ContourParams{});
+  const ContourFeatures features =
+      extractContourFeatures(test::scanFrom(wall, test::pose2d(0, 0, 0), 0.01), ContourParams{});
   EXPECT_EQ(features.segments.size(), 1u);
   EXPECT_TRUE(features.special_points.empty());
 }

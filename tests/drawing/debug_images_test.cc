@@ -55,12 +55,13 @@ TEST(DebugImages, AScanWithoutSpecialPointsSaysSo) {
   ASSERT_TRUE(features.special_points.empty());
   const cv::Mat image = drawScan(scan, features, params, "circle");
   EXPECT_GT(countColour(image(cv::Rect(0, 60, 1200, 40)), Palette::warning()), 100);  // the red notice line
-  EXPECT_GT(countColour(image, {150, 150, 150}), 50);  // the raw points are drawn
+  EXPECT_GT(countColour(image, {150, 150, 150}), 50);                                 // the raw points are drawn
 }
 
 TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
   const simulation::World world = simulation::makeFurnishedRoom();
-  const LaserScan a = test::scanFrom(world, test::pose2d(0, 0, 0)), b = test::scanFrom(world, test::pose2d(0.2, 0.1, 5));
+  const LaserScan a = test::scanFrom(world, test::pose2d(0, 0, 0)),
+                  b = test::scanFrom(world, test::pose2d(0.2, 0.1, 5));
   const ContourParams params;
   const ContourFeatures fa = extractContourFeatures(a, params), fb = extractContourFeatures(b, params);
   std::mt19937 rng(1);
@@ -70,7 +71,8 @@ TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
   EXPECT_EQ(pair.cols, 1600);
   EXPECT_GT(countColour(pair, Palette::inlier()), 20);
   EXPECT_GT(countColour(pair, Palette::source()), 500);
-  const cv::Mat sides = drawAlignments(a, b, {{"contour", result.transform, true}, {"none", Eigen::Matrix3d::Identity(), false}}, 500);
+  const cv::Mat sides =
+      drawAlignments(a, b, {{"contour", result.transform, true}, {"none", Eigen::Matrix3d::Identity(), false}}, 500);
   EXPECT_EQ(sides.cols, 1000);
   EXPECT_EQ(sides.rows, 500);
 }

@@ -44,7 +44,8 @@ TEST(Carmen, ReadingsAtMaxRangeAreNoReturn) {
 
 TEST(Carmen, OutOfOrderScansAreSortedAndCounted) {
   TempDir dir;
-  const auto path = dir.write("a.clf", flaser(4, 1, 0, 0, 0, 3.0) + flaser(4, 1, 0, 0, 0, 1.0) + flaser(4, 1, 0, 0, 0, 2.0));
+  const auto path =
+      dir.write("a.clf", flaser(4, 1, 0, 0, 0, 3.0) + flaser(4, 1, 0, 0, 0, 1.0) + flaser(4, 1, 0, 0, 0, 2.0));
   const ScanLog log = readCarmen(path);
   ASSERT_EQ(log.entries.size(), 3u);
   EXPECT_DOUBLE_EQ(log.entries[0].scan.stamp, 1.0);
@@ -54,9 +55,10 @@ TEST(Carmen, OutOfOrderScansAreSortedAndCounted) {
 
 TEST(Carmen, RawLaserGetsOdometryInterpolatedFromOdomLines) {
   TempDir dir;
-  const std::string text = "ODOM 0 0 0 0 0 0 10.0 host 10.0\n"
-                           "RAWLASER1 0 -1.5708 3.1416 0.0175 80 0.01 0 3 1.0 1.0 1.0 0 11.0 host 11.0\n"
-                           "ODOM 2 4 0.2 0 0 0 12.0 host 12.0\n";
+  const std::string text =
+      "ODOM 0 0 0 0 0 0 10.0 host 10.0\n"
+      "RAWLASER1 0 -1.5708 3.1416 0.0175 80 0.01 0 3 1.0 1.0 1.0 0 11.0 host 11.0\n"
+      "ODOM 2 4 0.2 0 0 0 12.0 host 12.0\n";
   const ScanLog log = readCarmen(dir.write("a.clf", text));
   ASSERT_EQ(log.entries.size(), 1u);
   ASSERT_TRUE(log.entries[0].odometry);

@@ -16,7 +16,8 @@ LaserScan sampleScan(double shift) {
   LaserScan scan;
   scan.angle_min = -2.0;
   scan.angle_increment = 0.01;
-  for (int k = 0; k < 300; ++k) scan.ranges.push_back(k % 37 == 5 ? std::nanf("") : float(3.0 + shift + std::sin(k * 0.05)));
+  for (int k = 0; k < 300; ++k)
+    scan.ranges.push_back(k % 37 == 5 ? std::nanf("") : float(3.0 + shift + std::sin(k * 0.05)));
   return scan;
 }
 

@@ -84,9 +84,7 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhenItIsTheGuess) {
 }
 
 // How many extractions of stages A-C have run in this process so far (each takes the next number).
-std::uint64_t extractionsSoFar() {
-  return extractContourFeatures(ComplexSequence{}, ContourParams{}).extraction - 1;
-}
+std::uint64_t extractionsSoFar() { return extractContourFeatures(ComplexSequence{}, ContourParams{}).extraction - 1; }
 
 // Odometry reads each scan once: the last source serves as the next target with its features.
 TEST(Odometry, ExtractsEachScansFeaturesOnce) {
@@ -95,7 +93,7 @@ TEST(Odometry, ExtractsEachScansFeaturesOnce) {
     SCOPED_TRACE(method);
     auto matcher = makeScanMatcher(method);
     const std::uint64_t before = extractionsSoFar();
-    const OdometryRun run = runOdometry(s.log, *matcher);  // every scan against the one before
+    const OdometryRun run = runOdometry(s.log, *matcher);               // every scan against the one before
     const std::uint64_t extractions = extractionsSoFar() - before - 1;  // less the count's own
     EXPECT_EQ(run.stats.failures, 0u);
     EXPECT_EQ(extractions, s.log.entries.size());

@@ -62,7 +62,8 @@ TEST(ContourCornerEstimation, GivesOneOutputPerInputPointWithTheCoresCorners) {
     EXPECT_FLOAT_EQ(c.fragment[0], float(p.fragment[0].real()));
     EXPECT_FLOAT_EQ(c.fragment[31], float(p.fragment[15].imag()));
   }
-  const auto carrying = std::count_if(corners.begin(), corners.end(), [](const ContourCorner &c) { return !isNoCorner(c); });
+  const auto carrying =
+      std::count_if(corners.begin(), corners.end(), [](const ContourCorner &c) { return !isNoCorner(c); });
   EXPECT_EQ(static_cast<std::size_t>(carrying), indices.size());  // and every other point is NaN in every field
   EXPECT_EQ(estimation.getContourFeatures().special_points.size(), indices.size());
 }
@@ -96,8 +97,9 @@ TEST(ContourCornerEstimation, WorksForPointXYZIAndShuffledDenseClouds) {
   // Sorting by bearing does not lose track of which input point carries a corner.
   for (const int index : estimation.getCornerIndices()) {
     const auto k = static_cast<std::size_t>(index);
-    EXPECT_LT((Eigen::Vector2d((*shuffled)[k].x, (*shuffled)[k].y) - Eigen::Vector2d(corners[k].x, corners[k].y)).norm(),
-              0.06);
+    EXPECT_LT(
+        (Eigen::Vector2d((*shuffled)[k].x, (*shuffled)[k].y) - Eigen::Vector2d(corners[k].x, corners[k].y)).norm(),
+        0.06);
   }
 }
 
@@ -142,8 +144,8 @@ ComplexSequence pointsAtBearings(double from_deg, double to_deg, double step_deg
 }
 
 TEST(CloudConversions, BearingOrderAllowsOneWrapAround) {
-  EXPECT_TRUE(isInBearingOrder(pointsAtBearings(-135, 135, 0.25)));   // a 270-degree scan in beam order
-  EXPECT_TRUE(isInBearingOrder(pointsAtBearings(90, 269, 1.0)));      // crosses +-180 once
+  EXPECT_TRUE(isInBearingOrder(pointsAtBearings(-135, 135, 0.25)));    // a 270-degree scan in beam order
+  EXPECT_TRUE(isInBearingOrder(pointsAtBearings(90, 269, 1.0)));       // crosses +-180 once
   EXPECT_FALSE(isInBearingOrder(pointsAtBearings(135, -135, -0.25)));  // clockwise
   EXPECT_FALSE(isInBearingOrder(pointsAtBearings(0, 719, 10.0)));      // two full turns
   ComplexSequence swapped = pointsAtBearings(-90, 90, 1.0);

@@ -135,8 +135,8 @@ TEST(ContourRegistration, SwapReusesTheLastSourcesFeaturesAsTarget) {
     }
     ASSERT_TRUE(registration.hasConverged()) << registration.getFailureReason();
     const Eigen::Matrix4f t = registration.getFinalTransformation();
-    const Eigen::Isometry2d truth = test::pose2d(0.2 * (k - 1), 0.05 * (k - 1), 3 * (k - 1)).inverse() *
-                                    test::pose2d(0.2 * k, 0.05 * k, 3 * k);
+    const Eigen::Isometry2d truth =
+        test::pose2d(0.2 * (k - 1), 0.05 * (k - 1), 3 * (k - 1)).inverse() * test::pose2d(0.2 * k, 0.05 * k, 3 * k);
     EXPECT_LT((t.block<2, 1>(0, 3).cast<double>() - truth.translation()).norm(), 0.02);
     last_source_extraction = registration.getSourceFeatures().extraction;
     last_extraction = std::max(last_source_extraction, registration.getTargetFeatures().extraction);

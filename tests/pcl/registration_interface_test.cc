@@ -51,11 +51,11 @@ std::pair<double, double> difference(const Eigen::Isometry2d &a, const Eigen::Is
   return {d.translation().norm(), std::abs(std::atan2(d.linear()(1, 0), d.linear()(0, 0))) * 180 / M_PI};
 }
 
-#define EXPECT_MOTION_NEAR(a, b, metres, degrees)         \
-  do {                                                    \
-    const auto [moved_, turned_] = difference((a), (b));  \
-    EXPECT_LT(moved_, metres);                            \
-    EXPECT_LT(turned_, degrees);                          \
+#define EXPECT_MOTION_NEAR(a, b, metres, degrees)        \
+  do {                                                   \
+    const auto [moved_, turned_] = difference((a), (b)); \
+    EXPECT_LT(moved_, metres);                           \
+    EXPECT_LT(turned_, degrees);                         \
   } while (0)
 
 struct ContourFactory {
@@ -87,8 +87,8 @@ TYPED_TEST(RegistrationInterface, CloudsRefilledInPlaceAndSetAgainGiveTheirNewMo
     Cloud aligned;
     registration->align(aligned);
     ASSERT_TRUE(registration->hasConverged());
-    EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(k - 1).inverse() * runPose(k),
-                       0.02, 0.5);
+    EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(k - 1).inverse() * runPose(k), 0.02,
+                       0.5);
   }
 }
 
@@ -103,8 +103,7 @@ TYPED_TEST(RegistrationInterface, SourceChangedInPlaceIsReadAgainByAlign) {
   fillScan(*source, runPose(3), 4);  // not set again: align() reads the cloud it holds, as ICP does
   registration->align(aligned);
   ASSERT_TRUE(registration->hasConverged());
-  EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(0).inverse() * runPose(3), 0.02,
-                     0.5);
+  EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(0).inverse() * runPose(3), 0.02, 0.5);
 }
 
 TYPED_TEST(RegistrationInterface, TargetChangedInPlaceAndSetAgainIsNewData) {
@@ -119,8 +118,7 @@ TYPED_TEST(RegistrationInterface, TargetChangedInPlaceAndSetAgainIsNewData) {
   registration->setInputTarget(target);
   registration->align(aligned);
   ASSERT_TRUE(registration->hasConverged());
-  EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(4).inverse() * runPose(2), 0.02,
-                     0.5);
+  EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(4).inverse() * runPose(2), 0.02, 0.5);
 }
 
 TYPED_TEST(RegistrationInterface, SwappingSourceAndTargetGivesTheInverse) {

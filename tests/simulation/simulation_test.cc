@@ -70,8 +70,9 @@ TEST(OccupancyGrid, MapServerYamlAndPgmAreRead) {
     const unsigned char pixels[12] = {0, 0, 0, 0, 255, 205, 255, 255, 255, 255, 255, 255};
     pgm.write(reinterpret_cast<const char *>(pixels), 12);
   }
-  dir.write("map.yaml", "image: map.pgm\nresolution: 0.5\norigin: [-1.0, 2.0, 0.0]\nnegate: 0\n"
-                        "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  dir.write("map.yaml",
+            "image: map.pgm\nresolution: 0.5\norigin: [-1.0, 2.0, 0.0]\nnegate: 0\n"
+            "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
   const OccupancyGrid grid = readOccupancyGrid(dir.file("map.yaml"));
   EXPECT_EQ(grid.width(), 4);
   EXPECT_EQ(grid.height(), 3);

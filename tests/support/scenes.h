@@ -30,8 +30,8 @@ struct RoomWithBoxes {
     world.addBox({-5.0, -3.0}, {6.0, 4.0});
     world.addBox({-1.5, -2.2}, {-0.5, -1.2});
     world.addBox({1.0, 2.0}, {2.0, 3.0});
-    corners = {{-5.0, -3.0}, {6.0, -3.0}, {6.0, 4.0}, {-5.0, 4.0}, {-1.5, -2.2}, {-0.5, -2.2},
-               {-0.5, -1.2}, {-1.5, -1.2}, {1.0, 2.0}, {2.0, 2.0}, {2.0, 3.0}, {1.0, 3.0}};
+    corners = {{-5.0, -3.0}, {6.0, -3.0},  {6.0, 4.0}, {-5.0, 4.0}, {-1.5, -2.2}, {-0.5, -2.2},
+               {-0.5, -1.2}, {-1.5, -1.2}, {1.0, 2.0}, {2.0, 2.0},  {2.0, 3.0},   {1.0, 3.0}};
   }
 
   /// The corners a 270-degree sensor at `pose` sees as corners, in the sensor frame: inside
@@ -56,8 +56,8 @@ struct RoomWithBoxes {
   }
 };
 
-inline LaserScan scanFrom(const simulation::World &world, const Eigen::Isometry2d &pose,
-                          double noise = 0.0, unsigned seed = 42) {
+inline LaserScan scanFrom(const simulation::World &world, const Eigen::Isometry2d &pose, double noise = 0.0,
+                          unsigned seed = 42) {
   simulation::LidarModel model = simulation::LidarModel::hokuyoUtm30lx();
   model.range_noise = noise;
   std::mt19937 rng(seed);

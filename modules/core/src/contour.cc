@@ -11,8 +11,7 @@ namespace {
 bool isUsable(const Complex &point, const SegmentationParams &params) {
   if (!isFinite(point)) return false;
   const double range = magnitude(point);
-  return range > 0.0 && range >= params.range_min &&
-         (params.range_max <= 0.0 || range < params.range_max);
+  return range > 0.0 && range >= params.range_min && (params.range_max <= 0.0 || range < params.range_max);
 }
 
 bool isLongEnough(const ContourSegment &segment, const SegmentationParams &params) {
@@ -67,8 +66,7 @@ double polylineLength(const ComplexSequence &points) {
   return length;
 }
 
-std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
-                                              const SegmentationParams &params) {
+std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code, const SegmentationParams &params) {
   std::vector<ContourSegment> segments;
   SpareElements<ContourSegment> spare;
   splitIntoSegments(polar_code, params, segments, spare);

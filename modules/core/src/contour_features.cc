@@ -29,7 +29,7 @@ void extract(const ComplexSequence &polar_code, const SegmentationParams &segmen
   ContourFeatures::Buffers &buffers = features.buffers;
   splitIntoSegments(polar_code, segmentation, features.segments, buffers.segments);  // stage A
   equalizeSegments(features.segments, params.equalization, features.contours, buffers.contours, buffers.arc);  // B
-  buffers.bank.build(params.corner_filter);                                          // stage C
+  buffers.bank.build(params.corner_filter);  // stage C
   buffers.responses.resize(features.responses, features.contours.size());
   buffers.special_points.clear(features.special_points);
   for (std::size_t k = 0; k < features.contours.size(); ++k) {
@@ -41,8 +41,7 @@ void extract(const ComplexSequence &polar_code, const SegmentationParams &segmen
 
 }  // namespace
 
-void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params,
-                            ContourFeatures &features) {
+void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params, ContourFeatures &features) {
   extract(polar_code, params.segmentation, params, features);
 }
 

@@ -24,8 +24,10 @@ std::vector<double> smooth(const std::vector<double> &h, double sigma, bool circ
     if (h[b] == 0.0) continue;
     for (int k = -radius; k <= radius; ++k) {
       int j = b + k;
-      if (circular) j = (j % n + n) % n;
-      else if (j < 0 || j >= n) continue;
+      if (circular)
+        j = (j % n + n) % n;
+      else if (j < 0 || j >= n)
+        continue;
       out[j] += h[b] * kernel[k + radius];
     }
   }
@@ -63,8 +65,9 @@ std::vector<double> peaks(const std::vector<double> &c, int count, int separatio
 
 // Offsets d (m, within +-max_offset) at which the source projections, moved by d, best
 // overlap the target's: the translation along `normal`.
-std::vector<double> normalOffsets(const std::vector<Eigen::Vector2d> &source, const std::vector<Eigen::Vector2d> &target,
-                                  const Eigen::Vector2d &normal, const DirectionHistogramParams &params) {
+std::vector<double> normalOffsets(const std::vector<Eigen::Vector2d> &source,
+                                  const std::vector<Eigen::Vector2d> &target, const Eigen::Vector2d &normal,
+                                  const DirectionHistogramParams &params) {
   double lo = INFINITY, hi = -INFINITY;
   for (const auto *points : {&source, &target})
     for (const Eigen::Vector2d &p : *points) {
@@ -119,7 +122,8 @@ bool DirectionHistogramParams::validate(std::string *why) const {
   return true;
 }
 
-std::vector<double> angleHistogram(const std::vector<EqualizedContour> &contours, const DirectionHistogramParams &params) {
+std::vector<double> angleHistogram(const std::vector<EqualizedContour> &contours,
+                                   const DirectionHistogramParams &params) {
   const int bins = params.angle_bins;
   std::vector<double> h(bins, 0.0);
   const auto chord = static_cast<std::size_t>(params.chord_elements);
@@ -167,7 +171,8 @@ std::vector<Eigen::Matrix3d> directionHypotheses(const ContourFeatures &source, 
   std::vector<Eigen::Vector2d> normals;
   for (double wall : walls) {
     if (!normals.empty()) {
-      if (std::abs(std::remainder(angleOf(wall) - angleOf(walls.front()), M_PI)) < params.min_direction_separation) continue;
+      if (std::abs(std::remainder(angleOf(wall) - angleOf(walls.front()), M_PI)) < params.min_direction_separation)
+        continue;
       if (height(wall) < kMinShareOfFirst * height(walls.front())) break;
     }
     normals.emplace_back(-std::sin(angleOf(wall)), std::cos(angleOf(wall)));
@@ -176,7 +181,8 @@ std::vector<Eigen::Matrix3d> directionHypotheses(const ContourFeatures &source, 
 
   // 3. Translation along each wall normal, per rotation.
   const Eigen::Vector2d start = guess ? Eigen::Vector2d(guess->topRightCorner<2, 1>()) : Eigen::Vector2d::Zero();
-  const std::vector<Eigen::Vector2d> source_points = vertices(source.contours), target_points = vertices(target.contours);
+  const std::vector<Eigen::Vector2d> source_points = vertices(source.contours),
+                                     target_points = vertices(target.contours);
   std::vector<Eigen::Vector2d> turned(source_points.size());
   for (double turn : turns) {
     const double yaw = turn * bin;

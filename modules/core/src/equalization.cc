@@ -40,10 +40,8 @@ std::size_t elementCountAtStep(double length, double step) {
 }  // namespace
 
 bool EqualizationParams::validate(std::string *why) const {
-  if (mode == EqualizationMode::kFixedStep && !(step > 0.0))
-    return invalid(why, "equalization.step must be > 0");
-  if (mode == EqualizationMode::kFixedCount && count < 1)
-    return invalid(why, "equalization.count must be >= 1");
+  if (mode == EqualizationMode::kFixedStep && !(step > 0.0)) return invalid(why, "equalization.step must be > 0");
+  if (mode == EqualizationMode::kFixedCount && count < 1) return invalid(why, "equalization.count must be >= 1");
   return true;
 }
 
@@ -58,8 +56,7 @@ void arcLengths(const ComplexSequence &points, std::vector<double> &arc) {
   for (std::size_t n = 1; n < points.size(); ++n) arc[n] = arc[n - 1] + magnitude(points[n] - points[n - 1]);
 }
 
-Complex pointAtArcLength(const ComplexSequence &points, const std::vector<double> &arc, double s,
-                         std::size_t *hint) {
+Complex pointAtArcLength(const ComplexSequence &points, const std::vector<double> &arc, double s, std::size_t *hint) {
   if (points.empty()) return {};
   if (s <= 0.0) return points.front();
   if (s >= arc.back()) return points.back();

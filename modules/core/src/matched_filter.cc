@@ -20,7 +20,8 @@ void CornerBank::build(const CornerFilterParams &params) {
   for (double degrees : params.corner_angles_deg) {
     const double angle = degrees * M_PI / 180.0;
     const double tau = M_PI - angle;  // the turn between the arms
-    for (std::int8_t turn : {std::int8_t{1}, std::int8_t{-1}}) elements.push_back({std::polar(1.0, -turn * tau), angle, turn});
+    for (std::int8_t turn : {std::int8_t{1}, std::int8_t{-1}})
+      elements.push_back({std::polar(1.0, -turn * tau), angle, turn});
   }
 }
 
@@ -65,8 +66,8 @@ void filterCorners(const EqualizedContour &contour, const CornerBank &bank, Corn
   for (std::size_t r = 0; r + 1 < 2 * s; ++r) energy += squaredMagnitude(contour.element(r));
   const double norm_t = std::sqrt(2.0 * static_cast<double>(s));  // |T|: 2s unit vectors
   for (std::size_t n = s; n + s < vertices; ++n) {
-    energy += squaredMagnitude(contour.element(n + s - 1));      // enters the window
-    if (n > s) energy -= squaredMagnitude(contour.element(n - s - 1));  // leaves it
+    energy += squaredMagnitude(contour.element(n + s - 1));              // enters the window
+    if (n > s) energy -= squaredMagnitude(contour.element(n - s - 1));   // leaves it
     const Complex arm1 = contour.vertices[n] - contour.vertices[n - s];  // sum of the first arm's vectors
     const Complex arm2 = contour.vertices[n + s] - contour.vertices[n];  // sum of the second arm's vectors
     const double norm_g = std::sqrt(std::max(0.0, energy));

@@ -144,7 +144,8 @@ void ransac(const Points2D &source, const Points2D &target, const std::vector<do
       if (!known && result.rivals.size() < kMaxRivals) result.rivals.push_back(hypothesis);
     }
     if (inliers > best_count || (inliers == best_count && error < best_error)) {  // step 5
-      if (inliers > best_count) result.rivals.clear();
+      if (inliers > best_count)
+        result.rivals.clear();
       else if (result.found && !sameMotion(hypothesis, result.transform)) {
         result.rivals.erase(std::remove_if(result.rivals.begin(), result.rivals.end(),
                                            [&](const Eigen::Matrix3d &r) { return sameMotion(r, hypothesis); }),

@@ -82,7 +82,9 @@ struct BearingIndex {
 // (1, 1, 1 / range), so that eigenvalues of translation and rotation compare.
 Eigen::Vector3d arcUnits(double rms_range) { return {1.0, 1.0, rms_range > 1e-6 ? 1.0 / rms_range : 1.0}; }
 
-double rmsRange(double lever_squares, double weight_sum) { return std::sqrt(lever_squares / std::max(weight_sum, 1e-12)); }
+double rmsRange(double lever_squares, double weight_sum) {
+  return std::sqrt(lever_squares / std::max(weight_sum, 1e-12));
+}
 
 }  // namespace
 
@@ -103,7 +105,8 @@ void contourSamples(const ContourFeatures &source, double sample_step, std::vect
 
 bool RefinementParams::validate(std::string *why) const {
   if (max_iterations < 0) return invalid(why, "refinement.max_iterations must be >= 0");
-  if (!(min_distance > 0.0 && max_distance >= min_distance)) return invalid(why, "refinement distances must be 0 < min <= max");
+  if (!(min_distance > 0.0 && max_distance >= min_distance))
+    return invalid(why, "refinement distances must be 0 < min <= max");
   if (!(sample_step > 0.0)) return invalid(why, "refinement.sample_step must be > 0");
   if (!(huber > 0.0)) return invalid(why, "refinement.huber must be > 0");
   if (!(stop_translation >= 0.0 && stop_rotation >= 0.0))
@@ -152,7 +155,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   double weighted_squares = 0.0;
   double weight_sum = 0.0;
-  double lever_squares = 0.0;  // sum of |rotated source point|^2: the rotation information if every normal were tangential
+  double lever_squares =
+      0.0;  // sum of |rotated source point|^2: the rotation information if every normal were tangential
   double distance = params.max_distance;
   for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
     result.iterations = iteration + 1;
@@ -213,8 +217,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     // Translation and rotation have different units: judge degeneracy on the translation block
     // and on the rotation conditioned on it.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(information.topLeftCorner<2, 2>());
-    result.constraint_ratio = translation.eigenvalues()(1) > 0.0
-                                  ? translation.eigenvalues()(0) / translation.eigenvalues()(1) : 0.0;
+    result.constraint_ratio =
+        translation.eigenvalues()(1) > 0.0 ? translation.eigenvalues()(0) / translation.eigenvalues()(1) : 0.0;
     const Eigen::Matrix2d h_tt = information.topLeftCorner<2, 2>();
     const Eigen::Vector2d h_tr = information.topRightCorner<2, 1>();
     const double h_rr = information(2, 2);

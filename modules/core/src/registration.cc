@@ -22,13 +22,15 @@ void failAtGuess(RegistrationResult &result, const Eigen::Matrix3d *guess, Regis
 }
 
 // Pairs consistent with the guess: target near the guessed source position, rotation near its yaw.
-std::vector<Correspondence> gateByGuess(const std::vector<Correspondence> &pairs, const std::vector<SpecialPoint> &source,
+std::vector<Correspondence> gateByGuess(const std::vector<Correspondence> &pairs,
+                                        const std::vector<SpecialPoint> &source,
                                         const std::vector<SpecialPoint> &target, const Eigen::Matrix3d &guess,
                                         const RegistrationParams &params, bool check_rotation) {
   std::vector<Correspondence> kept;
   const double yaw = yawOf(guess);
   for (const Correspondence &c : pairs) {
-    const Eigen::Vector2d predicted = guess.topLeftCorner<2, 2>() * source[c.source].position + guess.topRightCorner<2, 1>();
+    const Eigen::Vector2d predicted =
+        guess.topLeftCorner<2, 2>() * source[c.source].position + guess.topRightCorner<2, 1>();
     if ((predicted - target[c.target].position).norm() > params.guess_max_distance) continue;
     if (check_rotation && std::abs(std::remainder(c.rotation - yaw, 2 * M_PI)) > params.guess_max_rotation) continue;
     kept.push_back(c);
@@ -75,12 +77,18 @@ bool RegistrationParams::validate(std::string *why) const {
 
 const char *toString(RegistrationStatus status) {
   switch (status) {
-    case RegistrationStatus::kConverged: return "converged";
-    case RegistrationStatus::kInvalidParameters: return "invalid_parameters";
-    case RegistrationStatus::kTooFewSpecialPoints: return "too_few_special_points";
-    case RegistrationStatus::kTooFewCorrespondences: return "too_few_correspondences";
-    case RegistrationStatus::kTooFewInliers: return "too_few_inliers";
-    case RegistrationStatus::kDegenerate: return "degenerate";
+    case RegistrationStatus::kConverged:
+      return "converged";
+    case RegistrationStatus::kInvalidParameters:
+      return "invalid_parameters";
+    case RegistrationStatus::kTooFewSpecialPoints:
+      return "too_few_special_points";
+    case RegistrationStatus::kTooFewCorrespondences:
+      return "too_few_correspondences";
+    case RegistrationStatus::kTooFewInliers:
+      return "too_few_inliers";
+    case RegistrationStatus::kDegenerate:
+      return "degenerate";
   }
   return "unknown";
 }
@@ -151,12 +159,14 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
       const RefinementResult r = refiner.refine(sparse, rigidPart(starts[k].motion), quick);
       screened.push_back({r.overlap, k, r.transform});
     }
-    std::stable_sort(screened.begin(), screened.end(), [](const Screened &a, const Screened &b) { return a.overlap > b.overlap; });
+    std::stable_sort(screened.begin(), screened.end(),
+                     [](const Screened &a, const Screened &b) { return a.overlap > b.overlap; });
     // The best few that lead to distinct motions: two starts bound for one motion test nothing new.
     std::vector<const Screened *> chosen;
     for (const Screened &s : screened) {
       if (chosen.size() == kRefinedInFull) break;
-      if (std::none_of(chosen.begin(), chosen.end(), [&](const Screened *c) { return motionDistance(c->motion, s.motion) < 0.1; }))
+      if (std::none_of(chosen.begin(), chosen.end(),
+                       [&](const Screened *c) { return motionDistance(c->motion, s.motion) < 0.1; }))
         chosen.push_back(&s);
     }
     std::vector<RefinementStart> kept;
@@ -165,7 +175,8 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
   }
   std::vector<RefinementResult> &refined = buffers.refined;
   refined.clear();
-  for (const RefinementStart &start : starts) refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
+  for (const RefinementStart &start : starts)
+    refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
   BestRefinement result{refined.front()};
   for (const RefinementResult &r : refined) {
@@ -175,7 +186,8 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
     if (better) result.best = r;
   }
   for (const RefinementResult &r : refined)
-    if (r.overlap > result.best.overlap - kOverlapTie && motionDistance(r.transform, result.best.transform) > kDistinctMotions)
+    if (r.overlap > result.best.overlap - kOverlapTie &&
+        motionDistance(r.transform, result.best.transform) > kDistinctMotions)
       result.ambiguous = true;
   return result;
 }
@@ -199,7 +211,8 @@ bool settlesBack(const RefinementResult &best, double probe, const RefinementPar
   const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
   for (const double sign : {1.0, -1.0}) {
     const Eigen::Vector3d off = sign * probe * best.weakest_direction;
-    const RefinementResult r = refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe);
+    const RefinementResult r =
+        refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe);
     // How far from `best` the probe settled, rotation in metres of arc.
     const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
                                         std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
@@ -250,8 +263,8 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
   const std::size_t needed = static_cast<std::size_t>(params.min_special_points);
   if (src.size() < needed || dst.size() < needed)
     return fail(result, RegistrationStatus::kTooFewSpecialPoints,
-                "too few special points: " + std::to_string(src.size()) + " in source, " +
-                    std::to_string(dst.size()) + " in target, need " + std::to_string(needed));
+                "too few special points: " + std::to_string(src.size()) + " in source, " + std::to_string(dst.size()) +
+                    " in target, need " + std::to_string(needed));
 
   // Stage D: candidate pairs by fragment distance (eq. 14).
   const bool invariant = params.correspondence.distance == FragmentDistance::kModulus;
@@ -291,7 +304,8 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
   Points2D &inlier_sources = buffers.inlier_sources;
   inlier_sources.clear();
   for (int i : found.inliers)
-    if (std::none_of(inlier_sources.begin(), inlier_sources.end(), [&](const Eigen::Vector2d &x) { return (x - p[i]).norm() < 1e-9; }))
+    if (std::none_of(inlier_sources.begin(), inlier_sources.end(),
+                     [&](const Eigen::Vector2d &x) { return (x - p[i]).norm() < 1e-9; }))
       inlier_sources.push_back(p[i]);
   // Support must exceed the minimal sample, which any model fits exactly.
   const std::size_t min_inliers = std::max<std::size_t>(params.min_inliers, sample + 1);
@@ -343,8 +357,8 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     };
     // Two corners need a large overlap, more a modest one.
     if (refined.overlap < (verify_two ? params.two_inlier_min_overlap : params.corner_min_overlap))
-      return decline(" agree, but the contours overlap only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
-                     " % after alignment");
+      return decline(" agree, but the contours overlap only " +
+                     std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
     // A few corners, often along one wall, pin the motion no better than they are spread:
     // the contours must pin it too.
     if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&

@@ -15,8 +15,7 @@ struct Line {
 };
 
 // Total-least-squares line through the raw points whose arc length lies in [from, to].
-bool fitLine(const ComplexSequence &points, const std::vector<double> &arc, double from, double to,
-             Line &line) {
+bool fitLine(const ComplexSequence &points, const std::vector<double> &arc, double from, double to, Line &line) {
   Complex sum = 0.0;
   int count = 0;
   std::size_t first = points.size(), last = 0;
@@ -49,8 +48,8 @@ bool fitLine(const ComplexSequence &points, const std::vector<double> &arc, doub
 // Fits the arm that runs from the vertex at arc length `at` in direction `sign` (-1 back,
 // +1 ahead). The arm starts as the filter's s elements and grows while it stays straight,
 // so long walls give precise directions.
-bool fitArm(const ComplexSequence &points, const std::vector<double> &arc, double at, int sign,
-            double margin, double reach, const SpecialPointParams &params, Line &arm) {
+bool fitArm(const ComplexSequence &points, const std::vector<double> &arc, double at, int sign, double margin,
+            double reach, const SpecialPointParams &params, Line &arm) {
   auto fit = [&](double length, Line &line) {
     return sign < 0 ? fitLine(points, arc, at - length, at - margin, line)
                     : fitLine(points, arc, at + margin, at + length, line);
@@ -111,10 +110,8 @@ bool SpecialPointParams::validate(std::string *why) const {
   return true;
 }
 
-std::vector<SpecialPoint> findSpecialPoints(const ComplexSequence &raw_points,
-                                            const EqualizedContour &contour,
-                                            const CornerResponse &response,
-                                            const CornerFilterParams &filter,
+std::vector<SpecialPoint> findSpecialPoints(const ComplexSequence &raw_points, const EqualizedContour &contour,
+                                            const CornerResponse &response, const CornerFilterParams &filter,
                                             const SpecialPointParams &params) {
   std::vector<SpecialPoint> points;
   SpareElements<SpecialPoint> spare;

@@ -19,8 +19,8 @@ constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 // Distinct colours for contour segments (no red: red marks special points).
 cv::Scalar segmentColour(std::size_t k) {
-  static const cv::Scalar colours[] = {{180, 119, 31}, {44, 160, 44}, {189, 103, 148}, {75, 86, 140},
-                                       {194, 119, 227}, {34, 189, 188}, {207, 190, 23}, {127, 127, 127}};
+  static const cv::Scalar colours[] = {{180, 119, 31},  {44, 160, 44},  {189, 103, 148}, {75, 86, 140},
+                                       {194, 119, 227}, {34, 189, 188}, {207, 190, 23},  {127, 127, 127}};
   return colours[k % 8];
 }
 
@@ -121,7 +121,8 @@ cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const C
     if (features.contours[k].step * view.scale >= 6.0)  // vertices only where they stand apart
       for (const Complex &c : v) cv::circle(panel, view.pixel(toEigen(c)), 2, kBlack, cv::FILLED);
   }
-  for (const SpecialPoint &p : features.special_points) drawSpecialPoint(panel, view, p, identity, Palette::specialPoint());
+  for (const SpecialPoint &p : features.special_points)
+    drawSpecialPoint(panel, view, p, identity, Palette::specialPoint());
   decorate(panel, view);
   text(panel, title, {15, 30}, 0.8);
   char summary[160];
@@ -131,8 +132,11 @@ cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const C
   text(panel, summary, {15, 58});
   if (features.special_points.empty())
     text(panel, "NO SPECIAL POINTS: this scan cannot be matched by its corners", {15, 88}, 0.7, Palette::warning());
-  legend(panel, {{"raw points", kRawPoint}, {"contour segment (one colour each)", segmentColour(0)},
-                 {"equalized vertex", kBlack}, {"special point (corner arms)", Palette::specialPoint()}},
+  legend(panel,
+         {{"raw points", kRawPoint},
+          {"contour segment (one colour each)", segmentColour(0)},
+          {"equalized vertex", kBlack},
+          {"special point (corner arms)", Palette::specialPoint()}},
          {15, panel_height - 100});
 
   // The strip: response c(n) of every contour, one after another, separated by ticks.
@@ -154,8 +158,8 @@ cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const C
     for (std::size_t k = 0; k < features.responses.size(); ++k) {
       const auto &c = features.responses[k].response;
       for (std::size_t n = 0; n + 1 < c.size(); ++n)
-        cv::line(strip, {left + int((offset + n) * dx), y_of(c[n])}, {left + int((offset + n + 1) * dx), y_of(c[n + 1])},
-                 segmentColour(k), 1, cv::LINE_AA);
+        cv::line(strip, {left + int((offset + n) * dx), y_of(c[n])},
+                 {left + int((offset + n + 1) * dx), y_of(c[n + 1])}, segmentColour(k), 1, cv::LINE_AA);
       for (const SpecialPoint &p : features.special_points)
         if (p.contour == int(k) && p.vertex >= 0)
           cv::circle(strip, {left + int((offset + std::size_t(p.vertex)) * dx), y_of(p.response)}, 5,
@@ -197,16 +201,21 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
     cv::line(left, view.pixel(source_features.special_points[from].position),
              view.pixel(target_features.special_points[to].position), colour, is_inlier[k] ? 2 : 1, cv::LINE_AA);
   }
-  for (const SpecialPoint &p : target_features.special_points) drawSpecialPoint(left, view, p, identity, Palette::target());
-  for (const SpecialPoint &p : source_features.special_points) drawSpecialPoint(left, view, p, identity, Palette::source());
+  for (const SpecialPoint &p : target_features.special_points)
+    drawSpecialPoint(left, view, p, identity, Palette::target());
+  for (const SpecialPoint &p : source_features.special_points)
+    drawSpecialPoint(left, view, p, identity, Palette::source());
   decorate(left, view);
   text(left, title, {15, 30}, 0.7);
   char counts[200];
   std::snprintf(counts, sizeof counts, "special points: %zu target, %zu source; %zu candidate pairs, %zu inliers",
                 result.target_points, result.source_points, result.candidates.size(), result.inliers.size());
   text(left, counts, {15, 56}, 0.5);
-  legend(left, {{"target scan", Palette::target()}, {"source scan", Palette::source()}, {"RANSAC inlier pair", Palette::inlier()},
-                {"outlier pair", Palette::outlier()}},
+  legend(left,
+         {{"target scan", Palette::target()},
+          {"source scan", Palette::source()},
+          {"RANSAC inlier pair", Palette::inlier()},
+          {"outlier pair", Palette::outlier()}},
          {15, height - 90});
 
   // Right: the source moved by the result.
@@ -327,7 +336,8 @@ cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates,
     const cv::Scalar colour = segmentColour(index++);
     for (std::size_t k = 1; k < series.size(); ++k) {
       auto at = [&](const std::pair<double, double> &s) {
-        return cv::Point(left + int(s.first / max_distance * (right - left)), bottom - int(s.second / max_error * (bottom - top)));
+        return cv::Point(left + int(s.first / max_distance * (right - left)),
+                         bottom - int(s.second / max_error * (bottom - top)));
       };
       cv::line(plot, at(series[k - 1]), at(series[k]), colour, 2, cv::LINE_AA);
     }
@@ -365,7 +375,8 @@ cv::Mat drawWorld(const simulation::World &world, const std::map<std::string, st
   for (const simulation::Segment &s : world.segments())
     cv::line(image, view.pixel(s.a), view.pixel(s.b), kBlack, 2, cv::LINE_AA);
   for (const simulation::Circle &c : world.circles())
-    cv::circle(image, view.pixel(c.centre), std::max(1, static_cast<int>(c.radius * view.scale)), kBlack, 2, cv::LINE_AA);
+    cv::circle(image, view.pixel(c.centre), std::max(1, static_cast<int>(c.radius * view.scale)), kBlack, 2,
+               cv::LINE_AA);
   std::vector<std::pair<std::string, cv::Scalar>> entries;
   std::size_t index = 0;
   for (const auto &[name, path] : paths) {

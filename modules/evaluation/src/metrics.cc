@@ -62,7 +62,8 @@ std::optional<io::Pose2D> poseAt(const io::Trajectory &trajectory, double stamp,
 double pathLength(const io::Trajectory &trajectory) {
   double length = 0.0;
   for (std::size_t k = 1; k < trajectory.size(); ++k)
-    length += std::hypot(trajectory[k].pose.x - trajectory[k - 1].pose.x, trajectory[k].pose.y - trajectory[k - 1].pose.y);
+    length +=
+        std::hypot(trajectory[k].pose.x - trajectory[k - 1].pose.x, trajectory[k].pose.y - trajectory[k - 1].pose.y);
   return length;
 }
 
@@ -94,8 +95,8 @@ Drift drift(const Association &a, double window) {
   const std::size_t n = a.reference.size();
   std::vector<double> travelled(n, 0.0);
   for (std::size_t k = 1; k < n; ++k)
-    travelled[k] = travelled[k - 1] + std::hypot(a.reference[k].x - a.reference[k - 1].x,
-                                                 a.reference[k].y - a.reference[k - 1].y);
+    travelled[k] =
+        travelled[k - 1] + std::hypot(a.reference[k].x - a.reference[k - 1].x, a.reference[k].y - a.reference[k - 1].y);
   double sum = 0.0;
   std::size_t j = 0;
   for (std::size_t i = 0; i < n; ++i) {

@@ -97,8 +97,9 @@ std::vector<ArrivalResult> runExperiment(const simulation::World &world,
       if (settings.progress) settings.progress(finished, arrivals.size());
     }
   };
-  const unsigned threads = std::max(1u, std::min<unsigned>(settings.jobs ? settings.jobs : std::thread::hardware_concurrency(),
-                                                           static_cast<unsigned>(std::max<std::size_t>(arrivals.size(), 1))));
+  const unsigned threads =
+      std::max(1u, std::min<unsigned>(settings.jobs ? settings.jobs : std::thread::hardware_concurrency(),
+                                      static_cast<unsigned>(std::max<std::size_t>(arrivals.size(), 1))));
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread &t : pool) t.join();

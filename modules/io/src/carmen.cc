@@ -41,7 +41,7 @@ void fillRanges(LaserScan &scan, const std::vector<double> &values, double max_r
   for (std::size_t n = 0; n < values.size(); ++n) {
     const double r = values[n];
     scan.ranges[n] = (std::isfinite(r) && r > 0.0 && r < max_range) ? static_cast<float>(r)
-                                                                     : std::numeric_limits<float>::quiet_NaN();
+                                                                    : std::numeric_limits<float>::quiet_NaN();
   }
 }
 
@@ -92,8 +92,8 @@ std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &e
     scan.angle_increment = head[2];
     if (!std::isfinite(scan.angle_min) || !std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0)
       return "bad beam geometry";
-    const double max_range = (head[3] > 0.0 && std::isfinite(head[3])) ? std::min(head[3], options.max_range)
-                                                                        : options.max_range;
+    const double max_range =
+        (head[3] > 0.0 && std::isfinite(head[3])) ? std::min(head[3], options.max_range) : options.max_range;
     scan.range_max = max_range;
     fillRanges(scan, values, max_range);
     if (type == "ROBOTLASER1") {
@@ -156,9 +156,10 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
   std::FILE *file = std::fopen(path.c_str(), "w");
   if (!file) throw ReadError(path + ": cannot write");
   std::fprintf(file, "# CARMEN log written by contour_reg\n");
-  std::fprintf(file, "# ROBOTLASER1 laser_type start_angle field_of_view angular_resolution maximum_range accuracy "
-                     "remission_mode num_readings [ranges] num_remissions laser_pose robot_pose tv rv "
-                     "forward_safety_dist side_safety_dist turn_axis timestamp host logger_timestamp\n");
+  std::fprintf(file,
+               "# ROBOTLASER1 laser_type start_angle field_of_view angular_resolution maximum_range accuracy "
+               "remission_mode num_readings [ranges] num_remissions laser_pose robot_pose tv rv "
+               "forward_safety_dist side_safety_dist turn_axis timestamp host logger_timestamp\n");
   for (const LogEntry &entry : log.entries) {
     const LaserScan &s = entry.scan;
     const Pose2D pose = entry.odometry.value_or(Pose2D{});
@@ -169,8 +170,8 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
                  s.angle_increment * static_cast<double>(s.ranges.size() > 0 ? s.ranges.size() - 1 : 0),
                  s.angle_increment, max_range, s.ranges.size());
     for (float r : s.ranges) std::fprintf(file, " %.4f", std::isfinite(r) ? static_cast<double>(r) : max_range);
-    std::fprintf(file, " 0 %.6f %.6f %.6f %.6f %.6f %.6f 0 0 0 0 0 %.6f sim %.6f\n", pose.x, pose.y, pose.yaw,
-                 pose.x, pose.y, pose.yaw, s.stamp, s.stamp);
+    std::fprintf(file, " 0 %.6f %.6f %.6f %.6f %.6f %.6f 0 0 0 0 0 %.6f sim %.6f\n", pose.x, pose.y, pose.yaw, pose.x,
+                 pose.y, pose.yaw, s.stamp, s.stamp);
   }
   const bool ok = std::fflush(file) == 0;
   std::fclose(file);

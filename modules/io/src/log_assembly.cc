@@ -7,8 +7,8 @@ namespace contour_reg::io::detail {
 
 std::optional<Pose2D> interpolatePose(const std::vector<TimedPose> &samples, double stamp) {
   if (samples.empty() || stamp < samples.front().stamp || stamp > samples.back().stamp) return std::nullopt;
-  auto after = std::lower_bound(samples.begin(), samples.end(), stamp,
-                                [](const TimedPose &p, double t) { return p.stamp < t; });
+  auto after =
+      std::lower_bound(samples.begin(), samples.end(), stamp, [](const TimedPose &p, double t) { return p.stamp < t; });
   if (after == samples.begin()) return after->pose;
   const TimedPose &b = *after, &a = *(after - 1);
   const double w = b.stamp > a.stamp ? (stamp - a.stamp) / (b.stamp - a.stamp) : 0.0;

@@ -139,9 +139,12 @@ ScanLog readPcdFolder(const std::string &folder, double max_range) {
     LaserScan &scan = entry.scan;
     scan.range_max = max_range;
     double stamp = 0.0;
-    if (detail::parseNumber(files[k].stem().string(), stamp) && std::isfinite(stamp)) scan.stamp = stamp;
-    else if (cloud.header.stamp != 0) scan.stamp = double(cloud.header.stamp) * 1e-6;
-    else scan.stamp = double(k);
+    if (detail::parseNumber(files[k].stem().string(), stamp) && std::isfinite(stamp))
+      scan.stamp = stamp;
+    else if (cloud.header.stamp != 0)
+      scan.stamp = double(cloud.header.stamp) * 1e-6;
+    else
+      scan.stamp = double(k);
     if (!fitByIndex(beams, cloud.size(), scan) && !binByBearing(beams, scan))
       log.report.problems.push_back(file + ": bearings not on a uniform grid; points moved to the nearest of " +
                                     std::to_string(scan.ranges.size()) + " beams");

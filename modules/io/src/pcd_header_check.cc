@@ -34,8 +34,10 @@ std::string checkPcdHeader(const std::string &path, std::size_t &line) {
     std::istringstream fields(text);
     std::string key;
     fields >> key;
-    static const char *known[] = {"VERSION", "FIELDS", "SIZE", "TYPE", "COUNT", "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
-    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) return "unknown header line '" + key + "'";
+    static const char *known[] = {"VERSION", "FIELDS", "SIZE",      "TYPE",   "COUNT",
+                                  "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+    if (std::find(std::begin(known), std::end(known), key) == std::end(known))
+      return "unknown header line '" + key + "'";
     if (header.count(key)) return "header line " + key + " given twice";
     std::vector<std::string> values;
     for (std::string v; fields >> v;) values.push_back(v);
@@ -44,9 +46,11 @@ std::string checkPcdHeader(const std::string &path, std::size_t &line) {
   }
   for (const char *required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "HEIGHT"})
     if (!header.count(required)) return std::string("no ") + required + " line";
-  if (data != "ascii" && data != "binary" && data != "binary_compressed") return "DATA must be ascii, binary or binary_compressed";
+  if (data != "ascii" && data != "binary" && data != "binary_compressed")
+    return "DATA must be ascii, binary or binary_compressed";
   const auto &names = header["FIELDS"], &sizes = header["SIZE"], &types = header["TYPE"];
-  std::vector<std::string> counts = header.count("COUNT") ? header["COUNT"] : std::vector<std::string>(names.size(), "1");
+  std::vector<std::string> counts =
+      header.count("COUNT") ? header["COUNT"] : std::vector<std::string>(names.size(), "1");
   if (names.empty() || sizes.size() != names.size() || types.size() != names.size() || counts.size() != names.size())
     return "FIELDS, SIZE, TYPE and COUNT differ in length";
   std::size_t point_step = 0, values_per_point = 0;
@@ -69,8 +73,8 @@ std::string checkPcdHeader(const std::string &path, std::size_t &line) {
   if (header["WIDTH"].size() != 1 || !positiveInteger(header["WIDTH"][0], kMaxPoints, width)) return "bad WIDTH";
   if (header["HEIGHT"].size() != 1 || !positiveInteger(header["HEIGHT"][0], kMaxPoints, height)) return "bad HEIGHT";
   if (width * height > kMaxPoints) return "too many points";
-  if (header.count("POINTS") &&
-      (header["POINTS"].size() != 1 || !positiveInteger(header["POINTS"][0], kMaxPoints, points) || points != width * height))
+  if (header.count("POINTS") && (header["POINTS"].size() != 1 ||
+                                 !positiveInteger(header["POINTS"][0], kMaxPoints, points) || points != width * height))
     return "POINTS differs from WIDTH x HEIGHT";
   if (header.count("VIEWPOINT") && header["VIEWPOINT"].size() != 7) return "VIEWPOINT needs 7 numbers";
   const std::size_t header_line = line;
@@ -82,8 +86,8 @@ std::string checkPcdHeader(const std::string &path, std::size_t &line) {
       std::size_t tokens = 0;
       for (std::string v; fields >> v;) ++tokens;
       if (tokens == 0) continue;
-      if (tokens != values_per_point) return "a point has " + std::to_string(tokens) + " values, the header says " +
-                                             std::to_string(values_per_point);
+      if (tokens != values_per_point)
+        return "a point has " + std::to_string(tokens) + " values, the header says " + std::to_string(values_per_point);
       ++rows;
     }
     if (rows != width * height) {

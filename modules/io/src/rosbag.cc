@@ -82,8 +82,10 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
         } else if (auto odom = message.instantiate<nav_msgs::Odometry>()) {
           const auto &pose = odom->pose.pose;
           const Pose2D p{pose.position.x, pose.position.y, yawOf(pose.orientation)};
-          if (std::isfinite(p.x + p.y + p.yaw)) odometry.push_back({odom->header.stamp.toSec(), p});
-          else log.report.add(where, index, "odometry pose is not finite");
+          if (std::isfinite(p.x + p.y + p.yaw))
+            odometry.push_back({odom->header.stamp.toSec(), p});
+          else
+            log.report.add(where, index, "odometry pose is not finite");
         }
       } catch (const std::exception &error) {
         log.report.add(where, index, std::string("cannot decode message: ") + error.what());
@@ -106,8 +108,9 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
 bool rosbagSupported() { return false; }
 
 ScanLog readRosbag(const std::string &path, const RosbagOptions &) {
-  throw ReadError(path + ": this build of contour_reg cannot read ROS bags (install librosbag-storage-dev, "
-                         "libsensor-msgs-dev and libnav-msgs-dev, then rebuild)");
+  throw ReadError(path +
+                  ": this build of contour_reg cannot read ROS bags (install librosbag-storage-dev, "
+                  "libsensor-msgs-dev and libnav-msgs-dev, then rebuild)");
 }
 
 #endif

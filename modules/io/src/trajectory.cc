@@ -20,7 +20,8 @@ std::vector<std::vector<double>> readTable(const std::string &path, std::size_t 
     if (fields.empty() || fields[0][0] == '#') continue;
     std::vector<double> row(columns);
     bool ok = fields.size() >= columns;
-    for (std::size_t k = 0; ok && k < columns; ++k) ok = detail::parseNumber(fields[k], row[k]) && std::isfinite(row[k]);
+    for (std::size_t k = 0; ok && k < columns; ++k)
+      ok = detail::parseNumber(fields[k], row[k]) && std::isfinite(row[k]);
     if (!ok)
       throw ReadError(path + ":" + std::to_string(reader.lineNumber()) + ": expected " + std::to_string(columns) +
                       " numbers");

@@ -66,7 +66,6 @@ Registration::Ptr makeGicp(const MatcherSettings &settings) {
   return gicp;
 }
 
-
 Eigen::Matrix4f toMatrix4(const Eigen::Matrix3d &planar) {
   Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
   m.topLeftCorner<2, 2>() = planar.topLeftCorner<2, 2>().cast<float>();
@@ -123,8 +122,8 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
   const bool new_target = !(keyOf(target) == target_key_);
   const bool swap = new_target && keyOf(target) == source_key_ && swap_source_and_target_ && source_cloud_;
   const bool new_source = !(keyOf(source) == (swap ? target_key_ : source_key_));
-  Cloud::Ptr next_target = new_target && !swap ? (keyOf(target) == source_key_ ? source_cloud_ : cloudFor(target))
-                                                : nullptr;
+  Cloud::Ptr next_target =
+      new_target && !swap ? (keyOf(target) == source_key_ ? source_cloud_ : cloudFor(target)) : nullptr;
   Cloud::Ptr next_source = new_source ? cloudFor(source) : nullptr;
 
   const auto start = std::chrono::steady_clock::now();

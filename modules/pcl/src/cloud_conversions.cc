@@ -44,8 +44,7 @@ ContourCorner toContourCorner(const SpecialPoint &point) {
   out.orientation = static_cast<float>(point.orientation);
   out.response = static_cast<float>(point.response);
   out.turn = static_cast<float>(point.turn);
-  const std::size_t elements =
-      std::min<std::size_t>(point.fragment.size(), ContourCorner::kFragmentElements);
+  const std::size_t elements = std::min<std::size_t>(point.fragment.size(), ContourCorner::kFragmentElements);
   // Centre the fragment so that the vertex sits in the middle of the fixed-length field.
   const std::size_t offset = (ContourCorner::kFragmentElements - elements) / 2;
   for (std::size_t m = 0; m < elements; ++m) {

@@ -24,9 +24,9 @@ LidarModel LidarModel::ydlidarX4() {
   return model;
 }
 
-LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const LidarModel &model,
-                       std::mt19937 &rng) {
-  return simulateScan(world, [&pose](std::size_t) { return pose; }, model, rng);
+LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const LidarModel &model, std::mt19937 &rng) {
+  return simulateScan(
+      world, [&pose](std::size_t) { return pose; }, model, rng);
 }
 
 LaserScan simulateScan(const World &world, const std::function<Eigen::Isometry2d(std::size_t)> &pose_of_beam,

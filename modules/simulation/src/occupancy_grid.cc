@@ -6,9 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include <yaml-cpp/yaml.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <yaml-cpp/yaml.h>
 
 #include "contour_reg/io/scan_log.h"
 
@@ -31,8 +31,7 @@ OccupancyGrid::OccupancyGrid(int width, int height, double resolution, const Eig
   if (!(resolution > 0.0) || !std::isfinite(resolution))
     throw std::invalid_argument("OccupancyGrid: resolution must be positive");
   clearance_cells_.assign(cells_.size(), std::numeric_limits<float>::infinity());
-  if (cells_.empty() || std::none_of(cells_.begin(), cells_.end(), [](Cell c) { return c == Cell::kOccupied; }))
-    return;
+  if (cells_.empty() || std::none_of(cells_.begin(), cells_.end(), [](Cell c) { return c == Cell::kOccupied; })) return;
   // Distance transform: zero pixels are the obstacles.
   cv::Mat not_occupied(height_, width_, CV_8U);
   for (int row = 0; row < height_; ++row)

@@ -101,7 +101,8 @@ std::vector<Eigen::Isometry2d> samplePath(const std::vector<V> &waypoints, doubl
   const auto count = static_cast<std::size_t>(std::floor(length / spacing + 1e-9));
   for (std::size_t k = 0; k <= count; ++k)
     poses.push_back(poseAlongPath(waypoints, static_cast<double>(k) * spacing, turn_radius));
-  if (length - static_cast<double>(count) * spacing > 1e-6) poses.push_back(poseAlongPath(waypoints, length, turn_radius));
+  if (length - static_cast<double>(count) * spacing > 1e-6)
+    poses.push_back(poseAlongPath(waypoints, length, turn_radius));
   return poses;
 }
 

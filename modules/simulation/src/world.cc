@@ -16,7 +16,7 @@ double hitSegment(const Segment &s, const Eigen::Vector2d &origin, const Eigen::
   const double denominator = cross(direction, edge);
   if (std::abs(denominator) < 1e-12) return std::numeric_limits<double>::infinity();
   const Eigen::Vector2d to_a = s.a - origin;
-  const double t = cross(to_a, edge) / denominator;      // along the ray
+  const double t = cross(to_a, edge) / denominator;       // along the ray
   const double u = cross(to_a, direction) / denominator;  // along the segment
   if (t <= 0.0 || u < 0.0 || u > 1.0) return std::numeric_limits<double>::infinity();
   return t;

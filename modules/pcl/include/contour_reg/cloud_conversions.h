@@ -33,8 +33,8 @@ void sortByBearing(ComplexSequence &points, std::vector<int> *order = nullptr);
 /// `code`, reusing its buffer. With `order`, order[n] is the position in the cloud (or in
 /// `indices`) of code point n.
 template <typename PointT>
-void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &code, const pcl::Indices *indices = nullptr,
-                        std::vector<int> *order = nullptr) {
+void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &code,
+                        const pcl::Indices *indices = nullptr, std::vector<int> *order = nullptr) {
   const std::size_t count = indices ? indices->size() : cloud.size();
   code.clear();
   code.reserve(count);
@@ -64,8 +64,9 @@ ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const p
 /// With `order`, as polarCodeFromCloud() gives it: the cloud position of each beam index of
 /// the features' segments.
 template <typename PointT>
-void extractContourFeatures(const pcl::PointCloud<PointT> &cloud, const ContourParams &params, ContourFeatures &features,
-                            const pcl::Indices *indices = nullptr, std::vector<int> *order = nullptr) {
+void extractContourFeatures(const pcl::PointCloud<PointT> &cloud, const ContourParams &params,
+                            ContourFeatures &features, const pcl::Indices *indices = nullptr,
+                            std::vector<int> *order = nullptr) {
   ComplexSequence &code = features.buffers.polar_code;  // the extraction reads it, never writes it
   polarCodeFromCloud(cloud, code, indices, order);
   extractContourFeatures(code, params, features);

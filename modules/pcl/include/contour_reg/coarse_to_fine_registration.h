@@ -43,16 +43,16 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   using ConstPtr = std::shared_ptr<const CoarseToFineRegistration<PointSource, PointTarget, Scalar>>;
   using Coarse = ContourRegistration<PointSource, PointTarget, Scalar>;
   using Fine = pcl::Registration<PointSource, PointTarget, Scalar>;
-  using typename Base::Matrix4;
-  using typename Base::PointCloudSource;
-  using typename Base::PointCloudSourceConstPtr;
-  using typename Base::PointCloudTarget;
-  using typename Base::PointCloudTargetConstPtr;
   using Base::converged_;
   using Base::final_transformation_;
   using Base::input_;
   using Base::target_;
   using Base::transformation_;
+  using typename Base::Matrix4;
+  using typename Base::PointCloudSource;
+  using typename Base::PointCloudSourceConstPtr;
+  using typename Base::PointCloudTarget;
+  using typename Base::PointCloudTargetConstPtr;
 
   CoarseToFineRegistration();
 

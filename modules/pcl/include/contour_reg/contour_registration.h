@@ -63,10 +63,6 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   using Base = pcl::Registration<PointSource, PointTarget, Scalar>;
   using Ptr = std::shared_ptr<ContourRegistration<PointSource, PointTarget, Scalar>>;
   using ConstPtr = std::shared_ptr<const ContourRegistration<PointSource, PointTarget, Scalar>>;
-  using typename Base::Matrix4;
-  using typename Base::PointCloudSource;
-  using typename Base::PointCloudSourceConstPtr;
-  using typename Base::PointCloudTargetConstPtr;
   using Base::converged_;
   using Base::final_transformation_;
   using Base::getClassName;
@@ -75,6 +71,10 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   using Base::reg_name_;
   using Base::target_;
   using Base::transformation_;
+  using typename Base::Matrix4;
+  using typename Base::PointCloudSource;
+  using typename Base::PointCloudSourceConstPtr;
+  using typename Base::PointCloudTargetConstPtr;
 
   ContourRegistration();
 

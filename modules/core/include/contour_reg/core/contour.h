@@ -21,12 +21,12 @@ namespace contour_reg {
 
 /// How a polar code is cut into contour segments.
 struct SegmentationParams {
-  double range_min = 0.0;          ///< m, points closer to the sensor are invalid
-  double range_max = 0.0;          ///< m, points at or beyond are invalid (0: no limit)
-  double max_gap = 0.25;           ///< m, a jump longer than max_gap + max_gap_ratio * range splits
-  double max_gap_ratio = 0.10;     ///< relative part of the jump threshold (grazing walls)
-  int min_segment_points = 3;      ///< segments with fewer points are dropped
-  double min_segment_length = 0.1; ///< m, segments shorter than this are dropped
+  double range_min = 0.0;           ///< m, points closer to the sensor are invalid
+  double range_max = 0.0;           ///< m, points at or beyond are invalid (0: no limit)
+  double max_gap = 0.25;            ///< m, a jump longer than max_gap + max_gap_ratio * range splits
+  double max_gap_ratio = 0.10;      ///< relative part of the jump threshold (grazing walls)
+  int min_segment_points = 3;       ///< segments with fewer points are dropped
+  double min_segment_length = 0.1;  ///< m, segments shorter than this are dropped
 
   /// True when the values make sense; `why` names the first bad one.
   bool validate(std::string *why = nullptr) const;
@@ -34,8 +34,8 @@ struct SegmentationParams {
 
 /// A run of consecutive valid beams with no jump between neighbours.
 struct ContourSegment {
-  ComplexSequence points;        ///< polar code of the run, in beam order
-  std::vector<int> beam_indices; ///< index in the scan of each point
+  ComplexSequence points;         ///< polar code of the run, in beam order
+  std::vector<int> beam_indices;  ///< index in the scan of each point
 };
 
 /// Polar code of a scan, eq. (1). Invalid beams give NaN points, so beam indices stay aligned.
@@ -52,8 +52,7 @@ double polylineLength(const ComplexSequence &points);
 
 /// Splits a polar code (points in the sensor frame, in beam order, NaN where invalid)
 /// into segments at invalid points and range jumps, and drops short segments.
-std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
-                                              const SegmentationParams &params);
+std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code, const SegmentationParams &params);
 
 /// The same into `segments`, whose elements' buffers (and those kept in `spare`) are reused.
 void splitIntoSegments(const ComplexSequence &polar_code, const SegmentationParams &params,

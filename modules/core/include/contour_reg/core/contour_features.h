@@ -28,10 +28,10 @@ struct ContourParams {
 
 /// What stages A-C produced for one scan.
 struct ContourFeatures {
-  std::vector<ContourSegment> segments;     ///< stage A
-  std::vector<EqualizedContour> contours;   ///< stage B, one per segment
-  std::vector<CornerResponse> responses;    ///< stage C, one per contour
-  std::vector<SpecialPoint> special_points; ///< stage C, all contours
+  std::vector<ContourSegment> segments;      ///< stage A
+  std::vector<EqualizedContour> contours;    ///< stage B, one per segment
+  std::vector<CornerResponse> responses;     ///< stage C, one per contour
+  std::vector<SpecialPoint> special_points;  ///< stage C, all contours
   /// A number unique to the extractContourFeatures call that filled these features (0 for
   /// features made any other way): registration keeps its target-side work under it.
   std::uint64_t extraction = 0;
@@ -55,8 +55,7 @@ struct ContourFeatures {
 
 /// Runs stages A-C on a polar code (points in the sensor frame, beam order, NaN where invalid).
 /// Invalid parameters are the caller's to check with ContourParams::validate().
-void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params,
-                            ContourFeatures &features);
+void extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params, ContourFeatures &features);
 
 /// Convenience overload returning the features.
 ContourFeatures extractContourFeatures(const ComplexSequence &polar_code, const ContourParams &params);

@@ -30,9 +30,9 @@ enum class FragmentDistance {
 
 struct CorrespondenceParams {
   FragmentDistance distance = FragmentDistance::kModulus;
-  int candidates_per_point = 3;       ///< best targets kept per source point
-  double ratio = 0.9;                 ///< with one candidate: best R must be below ratio * second best R
-  double max_angle_difference = 0.35; ///< rad, corner angles of a pair must agree this well
+  int candidates_per_point = 3;         ///< best targets kept per source point
+  double ratio = 0.9;                   ///< with one candidate: best R must be below ratio * second best R
+  double max_angle_difference = 0.35;   ///< rad, corner angles of a pair must agree this well
   std::size_t kdtree_min_points = 128;  ///< use the kd-tree when both scans have at least this many points
 
   bool validate(std::string *why = nullptr) const;
@@ -47,8 +47,8 @@ struct Correspondence {
 };
 
 /// R^2 of eq. (14) between two fragments of equal length; `rotation` gets arg (N, G).
-double fragmentDistanceSquared(const ComplexSequence &source, const ComplexSequence &target,
-                               FragmentDistance form, double *rotation = nullptr);
+double fragmentDistanceSquared(const ComplexSequence &source, const ComplexSequence &target, FragmentDistance form,
+                               double *rotation = nullptr);
 
 /// Candidate pairs between two sets of special points, best first per source point.
 std::vector<Correspondence> findCorrespondences(const std::vector<SpecialPoint> &source,

@@ -41,7 +41,8 @@ struct DirectionHistogramParams {
 
 /// Circular histogram of the chord directions of the equalized contours, `angle_bins`
 /// bins from -pi, Gaussian-smoothed; counts are chords, i.e. contour length.
-std::vector<double> angleHistogram(const std::vector<EqualizedContour> &contours, const DirectionHistogramParams &params);
+std::vector<double> angleHistogram(const std::vector<EqualizedContour> &contours,
+                                   const DirectionHistogramParams &params);
 
 /// Source-to-target motions suggested by the contours' directions and wall offsets, best
 /// correlated first. `guess` (identity when null) fills directions the walls leave open.

@@ -51,8 +51,8 @@ CornerResponse filterCorners(const EqualizedContour &contour, const CornerFilter
 struct CornerBank {
   struct Element {
     Complex conj_arm2;
-    double angle;       ///< rad, the corner angle dphi
-    std::int8_t turn;   ///< +1 left, -1 right
+    double angle;      ///< rad, the corner angle dphi
+    std::int8_t turn;  ///< +1 left, -1 right
   };
   std::vector<Element> elements;
   int arm_elements = 0;  ///< s

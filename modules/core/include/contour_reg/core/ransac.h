@@ -28,9 +28,9 @@ enum class TransformModel {
 
 struct RansacParams {
   TransformModel model = TransformModel::kRigid;
-  double inlier_threshold = 0.15;  ///< t, m
-  int max_iterations = 300;        ///< k
-  double confidence = 0.999;       ///< early stop
+  double inlier_threshold = 0.15;           ///< t, m
+  int max_iterations = 300;                 ///< k
+  double confidence = 0.999;                ///< early stop
   double max_rotation_disagreement = 0.26;  ///< rad, pair rotation vs hypothesis rotation (<= 0 off)
   /// Affine: hypotheses whose linear part scales any direction by more than this
   /// fraction away from 1 are rejected (a LIDAR measures in metres; 3 pairs always fit some affine map).

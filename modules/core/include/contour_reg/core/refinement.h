@@ -25,10 +25,10 @@ namespace contour_reg {
 struct RefinementParams {
   bool enabled = true;
   int max_iterations = 12;
-  double max_distance = 0.3;     ///< m, pairing distance in the first iteration
-  double min_distance = 0.08;    ///< m, pairing distance it shrinks to
-  double sample_step = 0.1;      ///< m, spacing of the source samples along the contour
-  double huber = 0.03;           ///< m, Huber threshold of the point-to-line residual
+  double max_distance = 0.3;   ///< m, pairing distance in the first iteration
+  double min_distance = 0.08;  ///< m, pairing distance it shrinks to
+  double sample_step = 0.1;    ///< m, spacing of the source samples along the contour
+  double huber = 0.03;         ///< m, Huber threshold of the point-to-line residual
   /// The refinement stops once the pairing distance has shrunk to min_distance and a step
   /// moves the pose by less than stop_translation (m) and turns it by less than stop_rotation (rad).
   double stop_translation = 1e-4;
@@ -45,11 +45,11 @@ struct RefinementParams {
 
 struct RefinementResult {
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
-  int pairs = 0;             ///< point-to-line pairs in the last iteration
-  double rmse = 0.0;         ///< m, point-to-line, last iteration
-  double overlap = 0.0;      ///< fraction of source samples paired in the last iteration
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw
-  bool degenerate = false;   ///< some direction of (x, y, yaw) unconstrained by the contours
+  int pairs = 0;                                            ///< point-to-line pairs in the last iteration
+  double rmse = 0.0;                                        ///< m, point-to-line, last iteration
+  double overlap = 0.0;                                     ///< fraction of source samples paired in the last iteration
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();     ///< x, y, yaw
+  bool degenerate = false;  ///< some direction of (x, y, yaw) unconstrained by the contours
   /// Weakest over strongest eigenvalue of the translation information: 0 in a corridor,
   /// 1 when the contours constrain x and y alike.
   double constraint_ratio = 0.0;

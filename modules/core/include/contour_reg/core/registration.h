@@ -28,8 +28,8 @@ struct RegistrationParams {
   RansacParams ransac;
   RefinementParams refinement;
   DirectionHistogramParams direction_histogram;
-  int min_special_points = 2;    ///< per scan
-  int min_inliers = 3;           ///< supporting pairs of distinct special points
+  int min_special_points = 2;  ///< per scan
+  int min_inliers = 3;         ///< supporting pairs of distinct special points
   /// Two inliers are accepted when, after refinement, at least this fraction of the
   /// source contour lies on the target contour (0 disables).
   double two_inlier_min_overlap = 0.6;
@@ -91,15 +91,15 @@ struct RegistrationResult {
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
   bool converged = false;
   RegistrationStatus status = RegistrationStatus::kTooFewSpecialPoints;
-  std::string reason;             ///< empty when converged
-  std::size_t source_points = 0;  ///< special points in the source scan
-  std::size_t target_points = 0;  ///< special points in the target scan
+  std::string reason;                      ///< empty when converged
+  std::size_t source_points = 0;           ///< special points in the source scan
+  std::size_t target_points = 0;           ///< special points in the target scan
   std::vector<Correspondence> candidates;  ///< candidate pairs given to RANSAC
-  std::vector<int> inliers;       ///< indices into `candidates`
-  double inlier_rmse = 0.0;       ///< m, corner vertices of the inliers
+  std::vector<int> inliers;                ///< indices into `candidates`
+  double inlier_rmse = 0.0;                ///< m, corner vertices of the inliers
   int ransac_iterations = 0;
-  double contour_rmse = 0.0;      ///< m, point-to-line after refinement (0 without it)
-  double overlap = 0.0;           ///< fraction of source contour paired by the refinement
+  double contour_rmse = 0.0;                             ///< m, point-to-line after refinement (0 without it)
+  double overlap = 0.0;                                  ///< fraction of source contour paired by the refinement
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw of the estimate
   /// Some direction of the estimate is unconstrained: the contours leave it so (a corridor,
   /// a single wall) and fewer than three inlier corners pin it.

@@ -31,13 +31,13 @@ struct SpecialPointParams {
 /// A corner found on a contour.
 struct SpecialPoint {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< m, corner vertex in the scan frame
-  double corner_angle = 0.0;  ///< rad, angle between the two arms (pi: straight)
-  double orientation = 0.0;   ///< rad, direction of the bisector, from the vertex into the opening
-  double response = 0.0;      ///< c(n), eq. (13)
-  std::int8_t turn = 0;       ///< +1 left, -1 right, along the contour (beam order)
-  int contour = -1;           ///< index of the equalized contour (= segment)
-  int vertex = -1;            ///< vertex index on that contour
-  double sub_element = 0.0;   ///< offset of the response peak from `vertex`, in elements
+  double corner_angle = 0.0;                           ///< rad, angle between the two arms (pi: straight)
+  double orientation = 0.0;  ///< rad, direction of the bisector, from the vertex into the opening
+  double response = 0.0;     ///< c(n), eq. (13)
+  std::int8_t turn = 0;      ///< +1 left, -1 right, along the contour (beam order)
+  int contour = -1;          ///< index of the equalized contour (= segment)
+  int vertex = -1;           ///< vertex index on that contour
+  double sub_element = 0.0;  ///< offset of the response peak from `vertex`, in elements
   /// The 2L elementary vectors around the vertex, e(vertex - L .. vertex + L - 1),
   /// zero where the contour ends (eq. 14 compares these).
   ComplexSequence fragment;
@@ -45,10 +45,8 @@ struct SpecialPoint {
 
 /// Finds the special points of one equalized contour.
 /// `raw_points` is the raw segment the contour was equalized from (for vertex refinement).
-std::vector<SpecialPoint> findSpecialPoints(const ComplexSequence &raw_points,
-                                            const EqualizedContour &contour,
-                                            const CornerResponse &response,
-                                            const CornerFilterParams &filter,
+std::vector<SpecialPoint> findSpecialPoints(const ComplexSequence &raw_points, const EqualizedContour &contour,
+                                            const CornerResponse &response, const CornerFilterParams &filter,
                                             const SpecialPointParams &params);
 
 /// The same, appended to `points`, reusing the elements kept in `spare` and `arc` (the raw

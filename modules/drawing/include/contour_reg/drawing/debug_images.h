@@ -23,19 +23,19 @@ namespace contour_reg::drawing {
 
 /// Colours (BGR) the pictures use, so tests and readers can rely on them.
 struct Palette {
-  static cv::Scalar specialPoint() { return {0, 0, 230}; }  ///< red
-  static cv::Scalar target() { return {200, 120, 20}; }     ///< blue
-  static cv::Scalar source() { return {0, 140, 255}; }      ///< orange
-  static cv::Scalar inlier() { return {40, 170, 40}; }      ///< green
-  static cv::Scalar outlier() { return {60, 60, 220}; }     ///< light red
-  static cv::Scalar candidate() { return {170, 170, 170}; } ///< grey
-  static cv::Scalar warning() { return {0, 0, 255}; }       ///< pure red text
+  static cv::Scalar specialPoint() { return {0, 0, 230}; }   ///< red
+  static cv::Scalar target() { return {200, 120, 20}; }      ///< blue
+  static cv::Scalar source() { return {0, 140, 255}; }       ///< orange
+  static cv::Scalar inlier() { return {40, 170, 40}; }       ///< green
+  static cv::Scalar outlier() { return {60, 60, 220}; }      ///< light red
+  static cv::Scalar candidate() { return {170, 170, 170}; }  ///< grey
+  static cv::Scalar warning() { return {0, 0, 255}; }        ///< pure red text
 };
 
 /// A metric-to-pixel map for a square-ish panel: y up, 1 m = `scale` px.
 struct View {
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< world point at the panel's lower-left
-  double scale = 50.0;                                ///< px per m
+  double scale = 50.0;                               ///< px per m
   int width = 1200, height = 900;
   cv::Point pixel(const Eigen::Vector2d &p) const;
   /// A view that shows every finite point of `points` with a margin.

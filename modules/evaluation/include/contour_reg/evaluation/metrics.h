@@ -56,8 +56,8 @@ double absoluteTrajectoryError(const Association &association);
 /// Relation errors (Kümmerle et al. 2009): for every relation (t1, t2) whose two stamps
 /// the estimate covers, the error motion (reference^-1 estimate) of the relative pose.
 struct RelationErrors {
-  std::size_t count = 0;    ///< relations evaluated
-  std::size_t missing = 0;  ///< relations the estimate does not cover
+  std::size_t count = 0;                                 ///< relations evaluated
+  std::size_t missing = 0;                               ///< relations the estimate does not cover
   double translation_mean = 0.0, translation_std = 0.0;  ///< m
   double rotation_mean = 0.0, rotation_std = 0.0;        ///< deg
 };

@@ -32,7 +32,7 @@ struct ExperimentSettings {
   std::vector<std::string> methods = {"contour", "icp", "ndt2d"};
   std::vector<double> rates = {5.0, 2.0, 1.0};  ///< Hz
   int arrivals = 10;
-  unsigned seed = 1;  ///< arrival a of every cell uses seed + a
+  unsigned seed = 1;            ///< arrival a of every cell uses seed + a
   simulation::RunSettings run;  ///< the LIDAR, speed and motion; rate and seed are set per arrival
   /// Standard deviation of the shift of each waypoint per arrival, m: no two arrivals drive
   /// exactly the same line.
@@ -53,7 +53,7 @@ struct ArrivalResult {
   double end_point_error = 0.0;    ///< m
   double end_point_percent = 0.0;  ///< of the path length
   std::size_t scans = 0, registrations = 0, failures = 0;
-  double median_ms = 0.0;  ///< per registration
+  double median_ms = 0.0;                 ///< per registration
   io::Trajectory estimate, ground_truth;  ///< kept for the first arrival only
 };
 

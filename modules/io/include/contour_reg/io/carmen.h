@@ -16,7 +16,7 @@
 namespace contour_reg::io {
 
 struct CarmenOptions {
-  double max_range = 40.0;       ///< m, readings at or above are no-return (SICK logs use 81.83)
+  double max_range = 40.0;         ///< m, readings at or above are no-return (SICK logs use 81.83)
   std::size_t max_beams = 100000;  ///< lines announcing more beams are rejected
 };
 

@@ -10,10 +10,10 @@
 namespace contour_reg::io {
 
 struct LogReadOptions {
-  double max_range = 40.0;           ///< m, readings at or above are no-return
-  std::size_t max_beams = 100000;    ///< scans announcing more beams are rejected
-  std::string scan_topic;            ///< bags: sensor_msgs/LaserScan topic ("": the first one)
-  std::string odometry_topic;        ///< bags: nav_msgs/Odometry topic ("": the first one)
+  double max_range = 40.0;         ///< m, readings at or above are no-return
+  std::size_t max_beams = 100000;  ///< scans announcing more beams are rejected
+  std::string scan_topic;          ///< bags: sensor_msgs/LaserScan topic ("": the first one)
+  std::string odometry_topic;      ///< bags: nav_msgs/Odometry topic ("": the first one)
 };
 
 /// Reads `path` with the reader its kind calls for. Throws ReadError naming the file.

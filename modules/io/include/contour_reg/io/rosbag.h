@@ -14,9 +14,9 @@
 namespace contour_reg::io {
 
 struct RosbagOptions {
-  std::string scan_topic;       ///< "": the first topic carrying sensor_msgs/LaserScan
-  std::string odometry_topic;   ///< "": the first topic carrying nav_msgs/Odometry
-  double max_range = 40.0;      ///< m
+  std::string scan_topic;      ///< "": the first topic carrying sensor_msgs/LaserScan
+  std::string odometry_topic;  ///< "": the first topic carrying nav_msgs/Odometry
+  double max_range = 40.0;     ///< m
   std::size_t max_beams = 100000;
 };
 

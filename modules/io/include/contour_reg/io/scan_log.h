@@ -26,9 +26,9 @@ struct LogEntry {
 
 /// What a reader met besides good lines: skipped lines are counted, the first few described.
 struct ReadReport {
-  std::size_t lines = 0;          ///< lines read
-  std::size_t skipped = 0;        ///< bad or truncated lines skipped
-  std::size_t reordered = 0;      ///< scans whose stamp went backwards in file order
+  std::size_t lines = 0;              ///< lines read
+  std::size_t skipped = 0;            ///< bad or truncated lines skipped
+  std::size_t reordered = 0;          ///< scans whose stamp went backwards in file order
   std::vector<std::string> problems;  ///< "file:line: what", the first ones
 
   void add(const std::string &where, std::size_t line, const std::string &what);

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/registration/registration.h>
+#include <Eigen/Core>
 
 #include "contour_reg/contour_registration.h"
 #include "contour_reg/core/contour_features.h"
@@ -31,9 +31,9 @@ struct MatchResult {
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();
   bool converged = false;
   bool degenerate = false;
-  std::string status;          ///< short failure class ("too_few_special_points", "not_converged"); "" when converged
-  std::string reason;          ///< why not converged, in words ("" when converged)
-  double milliseconds = 0.0;   ///< registration only (features of new scans included)
+  std::string status;         ///< short failure class ("too_few_special_points", "not_converged"); "" when converged
+  std::string reason;         ///< why not converged, in words ("" when converged)
+  double milliseconds = 0.0;  ///< registration only (features of new scans included)
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw; zero when the method gives none
 };
 

@@ -15,7 +15,7 @@ namespace detail {
 // The cloud without its NaN points: the cloud itself when it is dense, else a copy into `buffer`.
 template <typename PointT>
 typename pcl::PointCloud<PointT>::ConstPtr finitePoints(const typename pcl::PointCloud<PointT>::ConstPtr &cloud,
-                                                         typename pcl::PointCloud<PointT>::Ptr &buffer) {
+                                                        typename pcl::PointCloud<PointT>::Ptr &buffer) {
   if (!cloud || cloud->is_dense) return cloud;
   if (!buffer) buffer = pcl::make_shared<pcl::PointCloud<PointT>>();
   pcl::Indices kept;
@@ -40,8 +40,10 @@ CoarseToFineRegistration<PointSource, PointTarget, Scalar>::CoarseToFineRegistra
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::setInputSource(const PointCloudSourceConstPtr &cloud) {
-  if (cloud && !cloud->empty()) Base::setInputSource(cloud);
-  else input_ = cloud;
+  if (cloud && !cloud->empty())
+    Base::setInputSource(cloud);
+  else
+    input_ = cloud;
   coarse_->setInputSource(cloud);
 }
 
@@ -99,7 +101,7 @@ bool CoarseToFineRegistration<PointSource, PointTarget, Scalar>::coarseUndecided
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::computeTransformation(PointCloudSource &output,
-                                                                                     const Matrix4 &guess) {
+                                                                                       const Matrix4 &guess) {
   final_transformation_ = transformation_ = guess;
   converged_ = false;
   fine_rejected_ = false;

@@ -63,8 +63,10 @@ template <typename PointSource, typename PointTarget, typename Scalar>
 void ContourRegistration<PointSource, PointTarget, Scalar>::holdSource(const PointCloudSourceConstPtr &cloud) {
   // pcl::Registration would keep the previous source on an empty one (and dereference a null
   // one); align() must fail on this one instead.
-  if (cloud && !cloud->empty()) Base::setInputSource(cloud);
-  else input_ = cloud;
+  if (cloud && !cloud->empty())
+    Base::setInputSource(cloud);
+  else
+    input_ = cloud;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
@@ -129,7 +131,7 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::setContourParams(con
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformation(PointCloudSource &output,
-                                                                                const Matrix4 &guess) {
+                                                                                  const Matrix4 &guess) {
   const Matrix4 fallback = guess;
   final_transformation_ = transformation_ = fallback;
   converged_ = false;
@@ -138,14 +140,16 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
   std::string why;
   if (!contour_params_.validate(&why) || !params.validate(&why)) {
     result_ = RegistrationResult{};
-    PCL_ERROR("[contour_reg::%s::computeTransformation] Invalid parameters: %s.\n", getClassName().c_str(), why.c_str());
+    PCL_ERROR("[contour_reg::%s::computeTransformation] Invalid parameters: %s.\n", getClassName().c_str(),
+              why.c_str());
     result_.status = RegistrationStatus::kInvalidParameters;
     result_.reason = why;
     return;
   }
   if (!detail::hasFinitePoint(*input_) || !detail::hasFinitePoint(*target_)) {
     result_ = RegistrationResult{};
-    result_.reason = !detail::hasFinitePoint(*input_) ? "source cloud has no valid point" : "target cloud has no valid point";
+    result_.reason =
+        !detail::hasFinitePoint(*input_) ? "source cloud has no valid point" : "target cloud has no valid point";
     PCL_ERROR("[contour_reg::%s::computeTransformation] %s.\n", getClassName().c_str(), result_.reason.c_str());
     result_.status = RegistrationStatus::kTooFewSpecialPoints;
     return;

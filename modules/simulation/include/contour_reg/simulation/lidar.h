@@ -17,10 +17,10 @@ struct LidarModel {
   std::string name = "custom";
   int beams = 1081;
   double field_of_view = 270.0 * M_PI / 180.0;  ///< rad, centred on the sensor's x axis
-  double range_min = 0.1;                        ///< m
-  double range_max = 30.0;                       ///< m; beyond it a beam returns no echo
-  double range_noise = 0.01;                     ///< m, standard deviation of Gaussian range noise
-  double dropout = 0.0;                          ///< probability that a beam returns no echo
+  double range_min = 0.1;                       ///< m
+  double range_max = 30.0;                      ///< m; beyond it a beam returns no echo
+  double range_noise = 0.01;                    ///< m, standard deviation of Gaussian range noise
+  double dropout = 0.0;                         ///< probability that a beam returns no echo
 
   double angleIncrement() const { return beams > 1 ? field_of_view / (beams - 1) : 0.0; }
 
@@ -32,8 +32,7 @@ struct LidarModel {
 
 /// Simulates one scan from `pose` (sensor frame in the world). A beam with no echo
 /// reads NaN. `rng` drives noise and dropout; a fixed seed fixes the scan.
-LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const LidarModel &model,
-                       std::mt19937 &rng);
+LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const LidarModel &model, std::mt19937 &rng);
 
 /// Simulates one scan taken while moving: beam n is cast from `pose_of_beam(n)`, the sensor
 /// pose at the moment that beam fires, so the scan is distorted as a real one is.

@@ -13,11 +13,11 @@ namespace contour_reg::simulation {
 
 /// How to read a map image when no YAML file says it (map_server's defaults).
 struct MapReadOptions {
-  double resolution = 0.05;                        ///< m per pixel
+  double resolution = 0.05;                          ///< m per pixel
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< m, world position of the lower-left pixel's corner
-  double occupied_threshold = 0.65;                ///< occupancy p = (255 - value) / 255 above it: obstacle
-  double free_threshold = 0.196;                   ///< p below it: free; between the two: unknown
-  bool negate = false;                             ///< white is occupied
+  double occupied_threshold = 0.65;                  ///< occupancy p = (255 - value) / 255 above it: obstacle
+  double free_threshold = 0.196;                     ///< p below it: free; between the two: unknown
+  bool negate = false;                               ///< white is occupied
 };
 
 /// A grid of cells, row 0 at the bottom (lowest y) as in ROS; an image's top row is the

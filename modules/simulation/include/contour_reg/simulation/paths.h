@@ -34,12 +34,12 @@ std::vector<Eigen::Isometry2d> samplePath(const std::vector<Eigen::Vector2d> &wa
                                           double turn_radius = 0.4);
 
 struct PlacementOptions {
-  double clearance = 0.6;       ///< m, least distance from every point of the path to an obstacle
-  double sample_step = 0.2;     ///< m, spacing of the checked points along the path
-  double search_step = 0.5;     ///< m, spacing of the tried start positions
+  double clearance = 0.6;    ///< m, least distance from every point of the path to an obstacle
+  double sample_step = 0.2;  ///< m, spacing of the checked points along the path
+  double search_step = 0.5;  ///< m, spacing of the tried start positions
   std::vector<double> scales = {1.0, 0.8, 0.6, 0.45};  ///< shape sizes tried, largest first
-  double sight_range = 30.0;    ///< m: from every waypoint, walls must be seen within it ...
-  double enclosed_fraction = 0.9;  ///< ... in at least this fraction of directions
+  double sight_range = 30.0;                           ///< m: from every waypoint, walls must be seen within it ...
+  double enclosed_fraction = 0.9;                      ///< ... in at least this fraction of directions
 };
 
 /// Places `shape` in `world`: turned by a multiple of 90 deg, mirrored or not, scaled and

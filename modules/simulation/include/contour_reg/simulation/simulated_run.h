@@ -21,8 +21,8 @@ enum class Motion {
 
 struct RunSettings {
   LidarModel lidar = LidarModel::hokuyoUtm30lx();
-  double rate = 2.0;    ///< Hz, LIDAR revolutions per second: one scan per revolution
-  double speed = 0.5;   ///< m/s along the path; the scans lie speed / rate m apart
+  double rate = 2.0;   ///< Hz, LIDAR revolutions per second: one scan per revolution
+  double speed = 0.5;  ///< m/s along the path; the scans lie speed / rate m apart
   Motion motion = Motion::kStopAndGo;
   double turn_radius = 0.4;      ///< m, see poseAlongPath
   double odometry_noise = 0.02;  ///< relative standard deviation of the wheel odometry increments
