@@ -80,5 +80,31 @@ TEST(CoarseToFineRegistration, AFineCorrectionBeyondTheLimitKeepsTheCoarseAnswer
   EXPECT_TRUE(registration.getFinalTransformation().isApprox(registration.getCoarseStage()->getFinalTransformation()));
 }
 
+// The stages are configured through getCoarseStage() and getFineStage(); the class's own PCL
+// setters are documented as having no effect.
+TEST(CoarseToFineRegistration, ItsOwnPclSettersHaveNoEffect) {
+  const simulation::World world = simulation::makeFurnishedRoom();
+  const auto target = toCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20), 0.01, 1));
+  const auto source = toCloud(test::scanFrom(world, test::pose2d(0.7, -0.3, 25), 0.01, 2));
+  Cloud aligned;
+  CoarseToFine plain, configured;
+  configured.setMaximumIterations(1);
+  configured.setRANSACIterations(1);
+  configured.setRANSACOutlierRejectionThreshold(0.001);
+  configured.setMaxCorrespondenceDistance(0.001);
+  configured.setTransformationEpsilon(1.0);
+  for (CoarseToFine *registration : {&plain, &configured}) {
+    registration->setInputTarget(target);
+    registration->setInputSource(source);
+    registration->align(aligned);
+    ASSERT_TRUE(registration->hasConverged());
+  }
+  EXPECT_TRUE(configured.getFinalTransformation().isApprox(plain.getFinalTransformation()));
+  // ... while the coarse stage's own setter does what it names.
+  configured.getCoarseStage()->setRANSACIterations(1);
+  configured.align(aligned);
+  EXPECT_EQ(configured.getCoarseStage()->getResult().ransac_iterations, 1);
+}
+
 }  // namespace
 }  // namespace contour_reg
