@@ -85,8 +85,9 @@ int runRelations(const RelationsOptions &options) {
   if (!options.pairs_csv.empty()) {
     csv = std::fopen(options.pairs_csv.c_str(), "w");
     if (!csv) throw std::runtime_error("cannot write " + options.pairs_csv);
-    std::fprintf(
-        csv, "method,first,second,t1,t2,dx,dy,dyaw,x,y,yaw,converged,recovered,error_m,error_deg,ms,status,reason\n");
+    std::fprintf(csv,
+                 "method,first,second,t1,t2,dx,dy,dyaw,x,y,yaw,converged,recovered,error_m,error_deg,ms,status,reason,"
+                 "cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw\n");
   }
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
@@ -109,11 +110,16 @@ int runRelations(const RelationsOptions &options) {
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
       wrong += match.converged && !ok;
-      if (csv)
-        std::fprintf(csv, "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\"\n",
+      if (csv) {
+        const Eigen::Matrix3d &c = match.covariance;
+        std::fprintf(csv,
+                     "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\","
+                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e\n",
                      name.c_str(), pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2),
                      t(1, 2), yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er, match.milliseconds,
-                     match.converged ? "converged" : match.status.c_str(), match.reason.c_str());
+                     match.converged ? "converged" : match.status.c_str(), match.reason.c_str(), c(0, 0), c(0, 1),
+                     c(0, 2), c(1, 1), c(1, 2), c(2, 2));
+      }
       if (match.converged && ok) {
         ++recovered;
         error_sum += et;

@@ -50,7 +50,7 @@ double spread(const Points2D &points) {
 
 bool RegistrationParams::validate(std::string *why) const {
   if (!correspondence.validate(why) || !ransac.validate(why) || !refinement.validate(why) ||
-      !direction_histogram.validate(why))
+      !direction_histogram.validate(why) || !free_space.validate(why))
     return false;
   if (!(local_fallback_max_distance > 0.0)) {
     if (why) *why = "local_fallback_max_distance must be > 0";
@@ -95,11 +95,45 @@ const char *toString(RegistrationStatus status) {
 
 namespace {
 
-// The best of several starting motions refined on the contours, and whether a distinct
-// motion fits about as well (the scans cannot tell them apart).
+// The best of several starting motions refined on the contours, its score, and whether a
+// distinct motion scores about as well (the scans cannot tell them apart).
 struct BestRefinement {
   RefinementResult best;
+  double score = 0.0;
   bool ambiguous = false;
+};
+
+// Scores refined motions in one unit, a fraction of the contour: the share of the source
+// contour the refinement paired (overlap) less the share of both contours the motion puts in
+// the other scan's free space (free_space.h). Each scan's view is built on first use, so a
+// registration that needs no comparison of motions builds none; the target's is kept in the
+// buffers for the next call with the same target extraction.
+class Scorer {
+ public:
+  Scorer(const ContourFeatures &source, const ContourFeatures &target, const FreeSpaceParams &params,
+         RegistrationBuffers &buffers)
+      : source_(source), target_(target), params_(params), buffers_(buffers) {}
+
+  double contradiction(const Eigen::Matrix3d &motion) {
+    if (!params_.enabled) return 0.0;
+    if (!views_ready_) {
+      if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
+        buffers_.target_view.assign(target_);
+        buffers_.viewed_target = target_.extraction;
+      }
+      buffers_.source_view.assign(source_);
+      views_ready_ = true;
+    }
+    return mutualFreeSpaceEvidence(source_, buffers_.source_view, target_, buffers_.target_view, motion, params_)
+        .fraction();
+  }
+  double score(const RefinementResult &refined) { return refined.overlap - contradiction(refined.transform); }
+
+ private:
+  const ContourFeatures &source_, &target_;
+  const FreeSpaceParams &params_;
+  RegistrationBuffers &buffers_;
+  bool views_ready_ = false;
 };
 
 // The refiner of `buffers`, indexing `target` (rebuilt only for a different extraction).
@@ -111,7 +145,7 @@ const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuff
   return buffers.refiner;
 }
 
-// Refined motions whose overlaps differ by less than this fit about as well.
+// Refined motions whose scores (fractions of the contour) differ by less than this fit about as well.
 constexpr double kOverlapTie = 0.05;
 
 // How far apart two motions are: m, with 1 m per rad of turn.
@@ -131,12 +165,12 @@ RefinementParams widened(const RegistrationParams &params) {
   return wide;
 }
 
-// The best overlap wins; where overlaps tie, the motion nearest the guess (no motion
-// without one) wins. Many starts are first screened by a short, sparse refinement; the
-// most promising few are refined in full.
+// The best score wins; where scores tie, the motion nearest the guess (no motion without
+// one) wins. Many starts are first screened by a short, sparse refinement on overlap alone;
+// the most promising few are refined in full and scored.
 BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &target,
                           std::vector<RefinementStart> &starts, const Eigen::Matrix3d *guess,
-                          RegistrationBuffers &buffers) {
+                          RegistrationBuffers &buffers, Scorer &scorer) {
   const ContourRefiner &refiner = refinerFor(target, buffers);
   // The starts share their sample spacing: the source is sampled once for the full
   // refinements and once, twice as sparse, for the screening.
@@ -178,16 +212,19 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
   for (const RefinementStart &start : starts)
     refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
-  BestRefinement result{refined.front()};
-  for (const RefinementResult &r : refined) {
-    const bool better = r.overlap > result.best.overlap + kOverlapTie ||
-                        (r.overlap > result.best.overlap - kOverlapTie &&
-                         motionDistance(r.transform, prior) < motionDistance(result.best.transform, prior));
-    if (better) result.best = r;
+  double scores[kRefinedInFull + 1];  // starts hold at most kRefinedInFull here, or fewer to begin with
+  for (std::size_t k = 0; k < refined.size(); ++k) scores[k] = scorer.score(refined[k]);
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < refined.size(); ++k) {
+    const bool better = scores[k] > scores[best] + kOverlapTie ||
+                        (scores[k] > scores[best] - kOverlapTie &&
+                         motionDistance(refined[k].transform, prior) < motionDistance(refined[best].transform, prior));
+    if (better) best = k;
   }
-  for (const RefinementResult &r : refined)
-    if (r.overlap > result.best.overlap - kOverlapTie &&
-        motionDistance(r.transform, result.best.transform) > kDistinctMotions)
+  BestRefinement result{refined[best], scores[best]};
+  for (std::size_t k = 0; k < refined.size(); ++k)
+    if (scores[k] > scores[best] - kOverlapTie &&
+        motionDistance(refined[k].transform, refined[best].transform) > kDistinctMotions)
       result.ambiguous = true;
   return result;
 }
@@ -201,8 +238,8 @@ constexpr double kSettledBack = 0.25;
 // room the probes come back or lose overlap; a bare corridor, a circle turned about its
 // centre, a corridor whose axis only a small stub constrains leave them elsewhere with as
 // good a fit. A probe distance of 0 turns the check off.
-bool settlesBack(const RefinementResult &best, double probe, const RefinementParams &params,
-                 const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
+bool settlesBack(const RefinementResult &best, double best_score, double probe, const RefinementParams &params,
+                 const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples, Scorer &scorer) {
   if (!(probe > 0.0)) return true;
   if (best.weakest_direction.isZero()) return false;
   // Each probe starts `probe` m off: its first pairing distance reaches that much further.
@@ -217,7 +254,7 @@ bool settlesBack(const RefinementResult &best, double probe, const RefinementPar
     const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
                                         std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
                             .norm();
-    if (left > kSettledBack * probe && r.overlap > best.overlap - kOverlapTie) return false;
+    if (left > kSettledBack * probe && scorer.score(r) > best_score - kOverlapTie) return false;
   }
   return true;
 }
@@ -229,11 +266,12 @@ RefinementResult refineFromGuess(const RegistrationParams &params, const Eigen::
 }
 
 // Whether `best` stands against the motion the contours settle on from the guess: they agree,
-// or that motion fits clearly worse. A few corners along repeated structure (a door every few
+// or that motion scores clearly worse. A few corners along repeated structure (a door every few
 // metres) can match one period off, where the contours fit about as well as at the true motion.
-bool standsAgainstGuess(const RefinementResult &best, const RefinementResult &from_guess) {
+bool standsAgainstGuess(const RefinementResult &best, double best_score, const RefinementResult &from_guess,
+                        Scorer &scorer) {
   return motionDistance(best.transform, from_guess.transform) <= kDistinctMotions ||
-         from_guess.overlap <= best.overlap - kOverlapTie;
+         scorer.score(from_guess) <= best_score - kOverlapTie;
 }
 
 // Empties `result`, keeping the buffers of its lists.
@@ -341,7 +379,9 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     std::vector<RefinementStart> &starts = buffers.starts;
     starts.assign(1, {coarse, &params.refinement});
     for (const Eigen::Matrix3d &rival : found.rivals) starts.push_back({rival, &params.refinement});
-    const RefinementResult refined = refineBest(source, target, starts, guess, buffers).best;
+    Scorer scorer(source, target, params.free_space, buffers);
+    const BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
+    const RefinementResult &refined = found.best;
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
     result.covariance = refined.covariance;
@@ -362,10 +402,12 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     // A few corners, often along one wall, pin the motion no better than they are spread:
     // the contours must pin it too.
     if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&
-        !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples))
+        !settlesBack(refined, found.score, params.probe_distance, params.refinement, buffers.refiner, buffers.samples,
+                     scorer))
       return decline(", and the contours leave a direction weakly constrained");
     if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
-        !standsAgainstGuess(refined, refineFromGuess(params, guess, buffers.refiner, buffers.samples)))
+        !standsAgainstGuess(refined, found.score, refineFromGuess(params, guess, buffers.refiner, buffers.samples),
+                            scorer))
       return decline(", and the contours fit a distinct motion from the guess as well");
   }
   result.converged = true;
@@ -400,15 +442,16 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
     for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, params.direction_histogram, guess))
       starts.push_back({motion, &params.refinement});
 
-  const BestRefinement found = refineBest(source, target, starts, guess, buffers);
+  Scorer scorer(source, target, params.free_space, buffers);
+  const BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
   const RefinementResult &refined = found.best;
   if (refined.overlap < params.local_fallback_min_overlap) {
     result.reason += "; refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
                      " % of the source contour lies on the target";
     return;
   }
-  if (refined.degenerate ||
-      !settlesBack(refined, params.probe_distance, params.refinement, buffers.refiner, buffers.samples)) {
+  if (refined.degenerate || !settlesBack(refined, found.score, params.probe_distance, params.refinement,
+                                         buffers.refiner, buffers.samples, scorer)) {
     result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return;
   }

@@ -18,6 +18,7 @@
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/correspondence.h"
 #include "contour_reg/core/direction_histogram.h"
+#include "contour_reg/core/free_space.h"
 #include "contour_reg/core/ransac.h"
 #include "contour_reg/core/refinement.h"
 
@@ -28,6 +29,11 @@ struct RegistrationParams {
   RansacParams ransac;
   RefinementParams refinement;
   DirectionHistogramParams direction_histogram;
+  /// Free-space evidence: where distinct motions compete (RANSAC's rivals, the probes, the
+  /// guess's refinement, the local fallback's starts), each is scored by its contour overlap
+  /// less the share of contour it puts in the other scan's free space (free_space.h), both
+  /// fractions of the contour; a motion whose score trails the best by the tie margin is no rival.
+  FreeSpaceParams free_space;
   int min_special_points = 2;  ///< per scan
   int min_inliers = 3;         ///< supporting pairs of distinct special points
   /// Two inliers are accepted when, after refinement, at least this fraction of the
@@ -125,6 +131,8 @@ struct RegistrationBuffers {
   std::vector<RefinementStart> starts;
   std::vector<RefinementResult> refined;
   std::vector<Eigen::Vector2d> samples, sparse_samples;
+  RangeView target_view, source_view;  ///< each scan's view, for free-space evidence
+  std::uint64_t viewed_target = 0;     ///< extraction target_view shows (0: none)
 };
 
 /// Registers `source` onto `target`. `guess` (source to target), when given, is the

@@ -1,0 +1,78 @@
+#pragma once
+/// @file free_space.h
+/// Beyond the paper: free-space evidence against a motion.
+///
+/// A LIDAR beam that returns at range r has passed through free space up to r. When a motion
+/// moves a surface point of the source scan to a spot that the target scan's beams saw
+/// through (the point lies clearly in front of the target's measured range at that bearing),
+/// the target contradicts the motion; the same holds the other way round. Contour fit alone
+/// cannot see this: along a row of equally spaced doors, a motion one period off puts the
+/// walls on the walls and the doors on the doors, but the corridor's end, a side opening or
+/// a wall seen across it lands where the other scan looked through empty space.
+///
+/// Points are compared with the two target beams that bracket their bearing and must lie
+/// clearly in front of the nearer of the two ranges (FreeSpaceParams::margin), so that a depth discontinuity between
+/// beams or a grazing wall does not contradict a right motion. Bearings where the target has
+/// no valid return (no echo, a gap between segments) give no evidence. A moving person, a
+/// door swung open between the scans contradict a right motion too, but only over a short
+/// stretch: contradicted runs shorter than `min_run_length` along the contour are not
+/// counted.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contour_reg/core/contour_features.h"
+
+namespace contour_reg {
+
+struct FreeSpaceParams {
+  /// Whether registration weighs free-space evidence when it decides between distinct motions.
+  bool enabled = true;
+  /// m, how far in front of the other scan's measured range a point must lie to contradict:
+  /// above range noise and what a right motion's residual error moves a point (a turn of
+  /// 1 degree moves a point 30 m away by 0.5 m), below the offset of a distinct motion.
+  double margin = 0.5;
+  /// m, contradicted stretches of contour shorter than this are not counted: a walking
+  /// person, a chair moved between the scans.
+  double min_run_length = 1.0;
+
+  bool validate(std::string *why = nullptr) const;
+};
+
+/// How much of one scan's contour a motion puts in the other scan's free space.
+struct FreeSpaceEvidence {
+  double tested_length = 0.0;        ///< m of contour that fell inside the other scan's view
+  double contradicted_length = 0.0;  ///< m of contour in runs of at least min_run_length in its free space
+  int contradicted_runs = 0;         ///< how many such runs
+  /// The contradicted share of the tested contour (0 when nothing was tested).
+  double fraction() const { return tested_length > 0.0 ? contradicted_length / tested_length : 0.0; }
+  FreeSpaceEvidence &operator+=(const FreeSpaceEvidence &other);
+};
+
+/// The target's view: the bearing and range of every point of its segments, by bearing.
+class RangeView {
+ public:
+  RangeView() = default;
+  explicit RangeView(const ContourFeatures &scan) { assign(scan); }
+  /// Rebuilds the view of `scan`, reusing the buffers.
+  void assign(const ContourFeatures &scan);
+  /// The range the scan measured at `bearing` (rad): the nearer of the two bracketing
+  /// returns, or a negative value where it has no evidence (outside its view, in a gap).
+  double rangeAt(double bearing) const;
+
+ private:
+  std::vector<double> bearings_, ranges_;
+  double max_gap_ = 0.0;  // rad, bracketing returns farther apart than this leave a gap
+};
+
+/// The evidence of `target`'s view against the source's contour moved by `motion` (source to target).
+FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeView &target_view,
+                                    const Eigen::Matrix3d &motion, const FreeSpaceParams &params);
+
+/// Both ways: the source's contour in the target's view and the target's in the source's.
+FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const RangeView &source_view,
+                                          const ContourFeatures &target, const RangeView &target_view,
+                                          const Eigen::Matrix3d &motion, const FreeSpaceParams &params);
+
+}  // namespace contour_reg

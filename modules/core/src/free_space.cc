@@ -1,0 +1,134 @@
+#include "contour_reg/core/free_space.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "validation.h"
+
+namespace contour_reg {
+
+namespace {
+
+// Bracketing returns may be this many typical beam spacings apart (one missing beam is bridged).
+constexpr double kGapSpacings = 2.5;
+
+// m, the most one step between neighbouring points of a segment adds to the tested length.
+constexpr double kMaxStep = 0.2;
+
+}  // namespace
+
+bool FreeSpaceParams::validate(std::string *why) const {
+  if (!(margin > 0.0)) return invalid(why, "free_space.margin must be > 0");
+  if (!(min_run_length >= 0.0)) return invalid(why, "free_space.min_run_length must be >= 0");
+  return true;
+}
+
+FreeSpaceEvidence &FreeSpaceEvidence::operator+=(const FreeSpaceEvidence &other) {
+  tested_length += other.tested_length;
+  contradicted_length += other.contradicted_length;
+  contradicted_runs += other.contradicted_runs;
+  return *this;
+}
+
+void RangeView::assign(const ContourFeatures &scan) {
+  bearings_.clear();
+  ranges_.clear();
+  for (const ContourSegment &segment : scan.segments)
+    for (const Complex &p : segment.points) {
+      bearings_.push_back(std::arg(p));
+      ranges_.push_back(std::abs(p));
+    }
+  if (!std::is_sorted(bearings_.begin(), bearings_.end())) {
+    std::vector<std::size_t> order(bearings_.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bearings_[a] < bearings_[b]; });
+    std::vector<double> bearings(order.size()), ranges(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      bearings[k] = bearings_[order[k]];
+      ranges[k] = ranges_[order[k]];
+    }
+    bearings_.swap(bearings);
+    ranges_.swap(ranges);
+  }
+  max_gap_ = 0.0;
+  if (bearings_.size() < 2) return;
+  std::vector<double> spacing(bearings_.size() - 1);
+  for (std::size_t k = 1; k < bearings_.size(); ++k) spacing[k - 1] = bearings_[k] - bearings_[k - 1];
+  std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
+  max_gap_ = kGapSpacings * spacing[spacing.size() / 2];
+}
+
+double RangeView::rangeAt(double bearing) const {
+  if (bearings_.size() < 2) return -1.0;
+  const auto above = std::lower_bound(bearings_.begin(), bearings_.end(), bearing);
+  std::size_t lo, hi;
+  double gap;
+  if (above == bearings_.begin() || above == bearings_.end()) {  // across the +-pi cut
+    lo = bearings_.size() - 1;
+    hi = 0;
+    gap = bearings_.front() + 2.0 * M_PI - bearings_.back();
+  } else {
+    hi = static_cast<std::size_t>(above - bearings_.begin());
+    lo = hi - 1;
+    gap = bearings_[hi] - bearings_[lo];
+  }
+  if (gap > max_gap_) return -1.0;
+  return std::min(ranges_[lo], ranges_[hi]);
+}
+
+FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeView &target_view,
+                                    const Eigen::Matrix3d &motion, const FreeSpaceParams &params) {
+  FreeSpaceEvidence evidence;
+  const Eigen::Matrix2d rotation = motion.topLeftCorner<2, 2>();
+  const Eigen::Vector2d translation = motion.topRightCorner<2, 1>();
+  for (const ContourSegment &segment : source.segments) {
+    const ComplexSequence &points = segment.points;
+    // A run of contradicted points is as long as its ends are far apart (the sum of steps
+    // between noisy neighbours would lengthen a close object's outline many times over).
+    std::size_t run_start = 0, run_end = 0;
+    bool in_run = false;
+    const auto closeRun = [&] {
+      if (!in_run) return;
+      double extent = 0.0;
+      for (std::size_t k = run_start; k <= run_end; ++k)
+        extent = std::max(extent, std::abs(points[k] - points[run_start]));
+      if (extent > 0.0 && extent >= params.min_run_length) {
+        evidence.contradicted_length += extent;
+        ++evidence.contradicted_runs;
+      }
+      in_run = false;
+    };
+    for (std::size_t n = 0; n < points.size(); ++n) {
+      const Eigen::Vector2d moved = rotation * Eigen::Vector2d(points[n].real(), points[n].imag()) + translation;
+      const double measured = target_view.rangeAt(std::atan2(moved.y(), moved.x()));
+      if (measured < 0.0) {
+        closeRun();
+        continue;
+      }
+      if (n > 0) evidence.tested_length += std::min(kMaxStep, std::abs(points[n] - points[n - 1]));
+      if (moved.norm() < measured - params.margin) {
+        if (!in_run) run_start = n;
+        run_end = n;
+        in_run = true;
+      } else {
+        closeRun();
+      }
+    }
+    closeRun();
+  }
+  return evidence;
+}
+
+FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const RangeView &source_view,
+                                          const ContourFeatures &target, const RangeView &target_view,
+                                          const Eigen::Matrix3d &motion, const FreeSpaceParams &params) {
+  FreeSpaceEvidence evidence = freeSpaceEvidence(source, target_view, motion, params);
+  Eigen::Matrix3d inverse = Eigen::Matrix3d::Identity();
+  inverse.topLeftCorner<2, 2>() = motion.topLeftCorner<2, 2>().transpose();
+  inverse.topRightCorner<2, 1>() = -inverse.topLeftCorner<2, 2>() * motion.topRightCorner<2, 1>();
+  evidence += freeSpaceEvidence(target, source_view, inverse, params);
+  return evidence;
+}
+
+}  // namespace contour_reg

@@ -1,0 +1,85 @@
+#include "contour_reg/core/free_space.h"
+
+#include <gtest/gtest.h>
+
+#include "contour_reg/core/transform_estimation.h"
+#include "scenes.h"
+
+namespace contour_reg {
+namespace {
+
+ContourFeatures featuresFrom(const simulation::World &world, const Eigen::Isometry2d &pose, unsigned seed) {
+  return extractContourFeatures(test::scanFrom(world, pose, 0.01, seed), ContourParams{});
+}
+
+Eigen::Matrix3d motionBetween(const Eigen::Isometry2d &target, const Eigen::Isometry2d &source) {
+  const Eigen::Isometry2d m = target.inverse() * source;
+  return rigidTransform(m.translation().x(), m.translation().y(), std::atan2(m.linear()(1, 0), m.linear()(0, 0)));
+}
+
+// A corridor with a door recess every 3 m along one wall, closed 9 m ahead.
+simulation::World corridorOfDoors() {
+  simulation::World corridor;
+  corridor.addSegment({-15.0, 1.3}, {9.0, 1.3});
+  corridor.addSegment({9.0, 1.3}, {9.0, -1.2});
+  for (double x = -15.0; x < 9.0; x += 3.0) {
+    corridor.addSegment({x, -1.2}, {x + 2.1, -1.2});
+    corridor.addSegment({x + 2.1, -1.2}, {x + 2.1, -1.4});
+    corridor.addSegment({x + 2.1, -1.4}, {x + 3.0, -1.4});
+    corridor.addSegment({x + 3.0, -1.4}, {x + 3.0, -1.2});
+  }
+  return corridor;
+}
+
+FreeSpaceEvidence evidenceAt(const ContourFeatures &source, const ContourFeatures &target, const Eigen::Matrix3d &m,
+                             const FreeSpaceParams &params = {}) {
+  return mutualFreeSpaceEvidence(source, RangeView(source), target, RangeView(target), m, params);
+}
+
+TEST(FreeSpace, RefutesAMotionOnePeriodOffAlongARowOfDoors) {
+  const simulation::World corridor = corridorOfDoors();
+  const Eigen::Isometry2d target_pose = test::pose2d(0, 0, 0), source_pose = test::pose2d(0.5, 0.05, 2);
+  const ContourFeatures target = featuresFrom(corridor, target_pose, 1),
+                        source = featuresFrom(corridor, source_pose, 2);
+  const Eigen::Matrix3d truth = motionBetween(target_pose, source_pose);
+  const Eigen::Matrix3d alias = rigidTransform(truth(0, 2) - 3.0, truth(1, 2), yawOf(truth));  // one door back
+
+  const FreeSpaceEvidence right = evidenceAt(source, target, truth);
+  const FreeSpaceEvidence wrong = evidenceAt(source, target, alias);
+  EXPECT_GT(right.tested_length, 10.0);
+  EXPECT_EQ(right.contradicted_length, 0.0);
+  // The source's end wall lands 3 m short of where the target saw it: the target looked through it.
+  EXPECT_GT(wrong.contradicted_length, 2.0);
+  EXPECT_GT(wrong.fraction(), 0.05);
+  EXPECT_GE(wrong.contradicted_runs, 1);
+}
+
+TEST(FreeSpace, APersonWalkingThroughDoesNotRefuteTheRightMotion) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  simulation::World with_person = room;
+  with_person.addCircle({0.9, -0.2}, 0.2);  // someone standing in the source scan only
+  const Eigen::Isometry2d target_pose = test::pose2d(0.0, -0.4, 10), source_pose = test::pose2d(0.3, -0.3, 14);
+  const ContourFeatures target = featuresFrom(room, target_pose, 1), source = featuresFrom(with_person, source_pose, 2);
+  const Eigen::Matrix3d truth = motionBetween(target_pose, source_pose);
+
+  FreeSpaceParams every_run;
+  every_run.min_run_length = 0.0;
+  // The person's outline lies where the target saw free space ...
+  EXPECT_GT(evidenceAt(source, target, truth, every_run).contradicted_length, 0.2);
+  // ... but a stretch that short is no evidence against the motion.
+  EXPECT_EQ(evidenceAt(source, target, truth).contradicted_length, 0.0);
+}
+
+TEST(FreeSpace, BearingsWithoutReturnsGiveNoEvidence) {
+  simulation::World wall;  // one wall ahead: no return at most bearings
+  wall.addSegment({3.0, -1.0}, {3.0, 1.0});
+  const ContourFeatures scan = featuresFrom(wall, test::pose2d(0, 0, 0), 1);
+  const RangeView view(scan);
+  EXPECT_NEAR(view.rangeAt(0.0), 3.0, 0.05);
+  EXPECT_LT(view.rangeAt(M_PI / 2), 0.0);  // nothing seen there: unknown, not free
+  EXPECT_LT(view.rangeAt(M_PI), 0.0);
+  EXPECT_LT(RangeView().rangeAt(0.0), 0.0);
+}
+
+}  // namespace
+}  // namespace contour_reg
