@@ -89,8 +89,20 @@ const char *toString(RegistrationStatus status) {
       return "too_few_inliers";
     case RegistrationStatus::kDegenerate:
       return "degenerate";
+    case RegistrationStatus::kLowOverlap:
+      return "low_overlap";
+    case RegistrationStatus::kUnconstrained:
+      return "unconstrained";
+    case RegistrationStatus::kAmbiguous:
+      return "ambiguous";
   }
   return "unknown";
+}
+
+std::ostream &operator<<(std::ostream &out, RegistrationStatus status) { return out << toString(status); }
+
+bool isUndecided(RegistrationStatus status) {
+  return status != RegistrationStatus::kConverged && status != RegistrationStatus::kInvalidParameters;
 }
 
 namespace {
@@ -446,16 +458,19 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
   const BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
   const RefinementResult &refined = found.best;
   if (refined.overlap < params.local_fallback_min_overlap) {
+    result.status = RegistrationStatus::kLowOverlap;
     result.reason += "; refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
                      " % of the source contour lies on the target";
     return;
   }
   if (refined.degenerate || !settlesBack(refined, found.score, params.probe_distance, params.refinement,
                                          buffers.refiner, buffers.samples, scorer)) {
+    result.status = RegistrationStatus::kUnconstrained;
     result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return;
   }
   if (found.ambiguous) {
+    result.status = RegistrationStatus::kAmbiguous;
     result.reason += "; refined on the contours, distinct motions fit equally well (repeated structure)";
     return;
   }
@@ -492,12 +507,8 @@ void registerContours(const ContourFeatures &source, const ContourFeatures &targ
                       std::mt19937 &rng, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
                       RegistrationResult &result) {
   registerByCorners(source, target, params, rng, guess, buffers, result);
-  const bool corners_undecided = result.status == RegistrationStatus::kTooFewSpecialPoints ||
-                                 result.status == RegistrationStatus::kTooFewCorrespondences ||
-                                 result.status == RegistrationStatus::kTooFewInliers ||
-                                 result.status == RegistrationStatus::kDegenerate;
-  if (!result.converged && corners_undecided && params.local_fallback_min_overlap > 0.0 && params.refinement.enabled &&
-      !source.contours.empty() && !target.contours.empty())
+  if (!result.converged && isUndecided(result.status) && params.local_fallback_min_overlap > 0.0 &&
+      params.refinement.enabled && !source.contours.empty() && !target.contours.empty())
     tryLocalFallback(source, target, params, guess, buffers, result);
 }
 

@@ -20,12 +20,11 @@ namespace contour_reg {
 /// points. The result has converged only when both stages did and the fine stage moved the
 /// coarse answer by at most setMaxFineCorrection() (metres, radians): a larger correction
 /// means ICP fell into another minimum, and the coarse answer is kept (converged, flagged by
-/// fineStageRejected()). When the coarse stage fails because its features cannot decide (too
-/// few special points, pairs or inliers) and setFineFromGuess(true) (the default), the fine
-/// stage runs from the guess alone and its own convergence is reported (fineFromGuess()
-/// tells); a local answer, right only when the guess was close. Any other coarse failure
-/// (degenerate geometry, invalid input) ends there: not converged, final transformation =
-/// guess.
+/// fineStageRejected()). When the coarse stage's scans do not decide the motion
+/// (isUndecided(): too few special points or inliers, low overlap, unconstrained, ambiguous)
+/// and setFineFromGuess(true) (the default), the fine stage runs from the guess alone and its
+/// own convergence is reported (fineFromGuess() tells); a local answer, right only when the
+/// guess was close. Invalid parameters end there: not converged, final transformation = guess.
 ///
 /// Inputs follow ContourRegistration's contract: every setInputSource()/setInputTarget() is
 /// new data, align() reads the source it holds every time, and swapSourceAndTarget() is the
@@ -85,8 +84,6 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   void computeTransformation(PointCloudSource &output, const Matrix4 &guess) override;
 
  private:
-  bool coarseUndecided() const;
-
   typename Coarse::Ptr coarse_;
   typename Fine::Ptr fine_;
   // The clouds without their NaN points, as the fine stage takes them; the target's is made

@@ -9,6 +9,7 @@
 /// `reason` say why not, and the transform is the guess (or identity).
 
 #include <cstdint>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -81,17 +82,29 @@ struct RegistrationParams {
   bool validate(std::string *why = nullptr) const;
 };
 
+/// The verdict of a registration. The corners' verdicts come first; when the local fallback
+/// runs and finds no acceptable motion either, its verdict (low overlap, unconstrained,
+/// ambiguous) replaces theirs, and `reason` keeps both.
 enum class RegistrationStatus {
   kConverged,
   kInvalidParameters,
-  kTooFewSpecialPoints,
-  kTooFewCorrespondences,
-  kTooFewInliers,
-  kDegenerate,
+  kTooFewSpecialPoints,    ///< a scan has fewer than min_special_points (a corridor of plain walls)
+  kTooFewCorrespondences,  ///< too few candidate pairs of special points
+  kTooFewInliers,          ///< the pairs agree on no motion with enough support
+  kDegenerate,             ///< the inlier special points lie too close together or on a line
+  kLowOverlap,             ///< on the contours, the best motion puts too little of the source on the target
+  kUnconstrained,          ///< on the contours, a direction stays weakly constrained (a corridor, a circle)
+  kAmbiguous,              ///< on the contours, a distinct motion scores as well (repeated structure, symmetry)
 };
 
 /// A short name for a status ("converged", "too_few_special_points", ...).
 const char *toString(RegistrationStatus status);
+/// Writes toString(status).
+std::ostream &operator<<(std::ostream &out, RegistrationStatus status);
+
+/// True for the verdicts where the scans did not decide the motion: every status but
+/// converged and invalid parameters. Another method, or a guess, may still decide it.
+bool isUndecided(RegistrationStatus status);
 
 struct RegistrationResult {
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target

@@ -93,13 +93,6 @@ void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::clearTarget() {
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
-bool CoarseToFineRegistration<PointSource, PointTarget, Scalar>::coarseUndecided() const {
-  const RegistrationStatus status = coarse_->getResult().status;
-  return status == RegistrationStatus::kTooFewSpecialPoints || status == RegistrationStatus::kTooFewCorrespondences ||
-         status == RegistrationStatus::kTooFewInliers;
-}
-
-template <typename PointSource, typename PointTarget, typename Scalar>
 void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::computeTransformation(PointCloudSource &output,
                                                                                        const Matrix4 &guess) {
   final_transformation_ = transformation_ = guess;
@@ -118,7 +111,7 @@ void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::computeTransfor
   const bool fine_possible = finite_source_ && finite_target_ && !finite_source_->empty() && !finite_target_->empty();
 
   if (!coarse_->hasConverged()) {
-    if (fine_from_guess_enabled_ && coarseUndecided() && fine_possible) {
+    if (fine_from_guess_enabled_ && isUndecided(coarse_->getResult().status) && fine_possible) {
       fine_->setInputSource(finite_source_);
       fine_->setInputTarget(finite_target_);
       fine_->align(scratch, guess);
