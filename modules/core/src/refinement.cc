@@ -112,6 +112,7 @@ bool RefinementParams::validate(std::string *why) const {
   if (!(stop_translation >= 0.0 && stop_rotation >= 0.0))
     return invalid(why, "refinement.stop_translation and stop_rotation must be >= 0");
   if (!(covariance_scale > 0.0)) return invalid(why, "refinement.covariance_scale must be > 0");
+  if (!(turn_noise >= 0.0)) return invalid(why, "refinement.turn_noise must be >= 0");
   return true;
 }
 
@@ -228,7 +229,11 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
-    if (lu.isInvertible()) result.covariance = params.covariance_scale * sigma2 * lu.inverse();
+    if (lu.isInvertible()) {
+      result.covariance = params.covariance_scale * sigma2 * lu.inverse();
+      const double turn = params.turn_noise * std::abs(yawOf(result.transform));
+      result.covariance(2, 2) += turn * turn;
+    }
   } else {
     result.degenerate = true;
     result.rms_range = 0.0;  // an earlier iteration's, with too few pairs now
