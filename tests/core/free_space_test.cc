@@ -50,7 +50,7 @@ TEST(FreeSpace, RefutesAMotionOnePeriodOffAlongARowOfDoors) {
   EXPECT_EQ(right.contradicted_length, 0.0);
   // The source's end wall lands 3 m short of where the target saw it: the target looked through it.
   EXPECT_GT(wrong.contradicted_length, 2.0);
-  EXPECT_GT(wrong.fraction(), 0.05);
+  EXPECT_GT(wrong.fraction(), 0.04);  // a few percent of both contours
   EXPECT_GE(wrong.contradicted_runs, 1);
 }
 

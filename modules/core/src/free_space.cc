@@ -13,8 +13,8 @@ namespace {
 // Bracketing returns may be this many typical beam spacings apart (one missing beam is bridged).
 constexpr double kGapSpacings = 2.5;
 
-// m, the most one step between neighbouring points of a segment adds to the tested length.
-constexpr double kMaxStep = 0.2;
+// m, the spacing along the equalized contour at which points are checked.
+constexpr double kSampleStep = 0.1;
 
 }  // namespace
 
@@ -82,16 +82,19 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
   FreeSpaceEvidence evidence;
   const Eigen::Matrix2d rotation = motion.topLeftCorner<2, 2>();
   const Eigen::Vector2d translation = motion.topRightCorner<2, 1>();
-  for (const ContourSegment &segment : source.segments) {
-    const ComplexSequence &points = segment.points;
-    // A run of contradicted points is as long as its ends are far apart (the sum of steps
-    // between noisy neighbours would lengthen a close object's outline many times over).
+  for (const EqualizedContour &contour : source.contours) {
+    // The contour's vertices about kSampleStep apart: free-space runs that count are metres long.
+    const ComplexSequence &points = contour.vertices;
+    const std::size_t stride =
+        contour.step > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(kSampleStep / contour.step)) : 1;
+    const double sample_length = static_cast<double>(stride) * contour.step;
+    // A run of contradicted samples is as long as its ends are far apart.
     std::size_t run_start = 0, run_end = 0;
     bool in_run = false;
     const auto closeRun = [&] {
       if (!in_run) return;
       double extent = 0.0;
-      for (std::size_t k = run_start; k <= run_end; ++k)
+      for (std::size_t k = run_start; k <= run_end; k += stride)
         extent = std::max(extent, std::abs(points[k] - points[run_start]));
       if (extent > 0.0 && extent >= params.min_run_length) {
         evidence.contradicted_length += extent;
@@ -99,14 +102,14 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
       }
       in_run = false;
     };
-    for (std::size_t n = 0; n < points.size(); ++n) {
+    for (std::size_t n = 0; n < points.size(); n += stride) {
       const Eigen::Vector2d moved = rotation * Eigen::Vector2d(points[n].real(), points[n].imag()) + translation;
       const double measured = target_view.rangeAt(std::atan2(moved.y(), moved.x()));
       if (measured < 0.0) {
         closeRun();
         continue;
       }
-      if (n > 0) evidence.tested_length += std::min(kMaxStep, std::abs(points[n] - points[n - 1]));
+      evidence.tested_length += sample_length;
       if (moved.norm() < measured - params.margin) {
         if (!in_run) run_start = n;
         run_end = n;

@@ -111,8 +111,9 @@ namespace {
 // distinct motion scores about as well (the scans cannot tell them apart).
 struct BestRefinement {
   RefinementResult best;
-  double score = 0.0;
   bool ambiguous = false;
+  bool scored = false;  // whether `score` holds the best's score yet: it is computed when first needed
+  double score = 0.0;
 };
 
 // Scores refined motions in one unit, a fraction of the contour: the share of the source
@@ -140,6 +141,11 @@ class Scorer {
         .fraction();
   }
   double score(const RefinementResult &refined) { return refined.overlap - contradiction(refined.transform); }
+  double score(BestRefinement &found) {
+    if (!found.scored) found.score = score(found.best);
+    found.scored = true;
+    return found.score;
+  }
 
  private:
   const ContourFeatures &source_, &target_;
@@ -223,6 +229,7 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
   refined.clear();
   for (const RefinementStart &start : starts)
     refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
+  if (refined.size() == 1) return BestRefinement{refined.front()};  // nothing to compare: scored when needed
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
   double scores[kRefinedInFull + 1];  // starts hold at most kRefinedInFull here, or fewer to begin with
   for (std::size_t k = 0; k < refined.size(); ++k) scores[k] = scorer.score(refined[k]);
@@ -233,7 +240,7 @@ BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &
                          motionDistance(refined[k].transform, prior) < motionDistance(refined[best].transform, prior));
     if (better) best = k;
   }
-  BestRefinement result{refined[best], scores[best]};
+  BestRefinement result{refined[best], false, true, scores[best]};
   for (std::size_t k = 0; k < refined.size(); ++k)
     if (scores[k] > scores[best] - kOverlapTie &&
         motionDistance(refined[k].transform, refined[best].transform) > kDistinctMotions)
@@ -250,8 +257,9 @@ constexpr double kSettledBack = 0.25;
 // room the probes come back or lose overlap; a bare corridor, a circle turned about its
 // centre, a corridor whose axis only a small stub constrains leave them elsewhere with as
 // good a fit. A probe distance of 0 turns the check off.
-bool settlesBack(const RefinementResult &best, double best_score, double probe, const RefinementParams &params,
-                 const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples, Scorer &scorer) {
+bool settlesBack(BestRefinement &found, double probe, const RefinementParams &params, const ContourRefiner &refiner,
+                 const std::vector<Eigen::Vector2d> &samples, Scorer &scorer) {
+  const RefinementResult &best = found.best;
   if (!(probe > 0.0)) return true;
   if (best.weakest_direction.isZero()) return false;
   // Each probe starts `probe` m off: its first pairing distance reaches that much further.
@@ -266,7 +274,7 @@ bool settlesBack(const RefinementResult &best, double best_score, double probe, 
     const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
                                         std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
                             .norm();
-    if (left > kSettledBack * probe && scorer.score(r) > best_score - kOverlapTie) return false;
+    if (left > kSettledBack * probe && scorer.score(r) > scorer.score(found) - kOverlapTie) return false;
   }
   return true;
 }
@@ -280,10 +288,9 @@ RefinementResult refineFromGuess(const RegistrationParams &params, const Eigen::
 // Whether `best` stands against the motion the contours settle on from the guess: they agree,
 // or that motion scores clearly worse. A few corners along repeated structure (a door every few
 // metres) can match one period off, where the contours fit about as well as at the true motion.
-bool standsAgainstGuess(const RefinementResult &best, double best_score, const RefinementResult &from_guess,
-                        Scorer &scorer) {
-  return motionDistance(best.transform, from_guess.transform) <= kDistinctMotions ||
-         scorer.score(from_guess) <= best_score - kOverlapTie;
+bool standsAgainstGuess(BestRefinement &found, const RefinementResult &from_guess, Scorer &scorer) {
+  return motionDistance(found.best.transform, from_guess.transform) <= kDistinctMotions ||
+         scorer.score(from_guess) <= scorer.score(found) - kOverlapTie;
 }
 
 // Empties `result`, keeping the buffers of its lists.
@@ -392,7 +399,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     starts.assign(1, {coarse, &params.refinement});
     for (const Eigen::Matrix3d &rival : found.rivals) starts.push_back({rival, &params.refinement});
     Scorer scorer(source, target, params.free_space, buffers);
-    const BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
+    BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
     const RefinementResult &refined = found.best;
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
@@ -414,12 +421,10 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     // A few corners, often along one wall, pin the motion no better than they are spread:
     // the contours must pin it too.
     if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&
-        !settlesBack(refined, found.score, params.probe_distance, params.refinement, buffers.refiner, buffers.samples,
-                     scorer))
+        !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
       return decline(", and the contours leave a direction weakly constrained");
     if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
-        !standsAgainstGuess(refined, found.score, refineFromGuess(params, guess, buffers.refiner, buffers.samples),
-                            scorer))
+        !standsAgainstGuess(found, refineFromGuess(params, guess, buffers.refiner, buffers.samples), scorer))
       return decline(", and the contours fit a distinct motion from the guess as well");
   }
   result.converged = true;
@@ -455,7 +460,7 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
       starts.push_back({motion, &params.refinement});
 
   Scorer scorer(source, target, params.free_space, buffers);
-  const BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
+  BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
   const RefinementResult &refined = found.best;
   if (refined.overlap < params.local_fallback_min_overlap) {
     result.status = RegistrationStatus::kLowOverlap;
@@ -463,8 +468,8 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
                      " % of the source contour lies on the target";
     return;
   }
-  if (refined.degenerate || !settlesBack(refined, found.score, params.probe_distance, params.refinement,
-                                         buffers.refiner, buffers.samples, scorer)) {
+  if (refined.degenerate ||
+      !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer)) {
     result.status = RegistrationStatus::kUnconstrained;
     result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return;

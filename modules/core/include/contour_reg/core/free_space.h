@@ -10,13 +10,12 @@
 /// walls on the walls and the doors on the doors, but the corridor's end, a side opening or
 /// a wall seen across it lands where the other scan looked through empty space.
 ///
-/// Points are compared with the two target beams that bracket their bearing and must lie
-/// clearly in front of the nearer of the two ranges (FreeSpaceParams::margin), so that a depth discontinuity between
-/// beams or a grazing wall does not contradict a right motion. Bearings where the target has
-/// no valid return (no echo, a gap between segments) give no evidence. A moving person, a
-/// door swung open between the scans contradict a right motion too, but only over a short
-/// stretch: contradicted runs shorter than `min_run_length` along the contour are not
-/// counted.
+/// The source's equalized contour is checked every 0.1 m; each point is compared with the two target beams that bracket
+/// their bearing and must lie clearly in front of the nearer of the two ranges (FreeSpaceParams::margin), so that a
+/// depth discontinuity between beams or a grazing wall does not contradict a right motion. Bearings where the target
+/// has no valid return (no echo, a gap between segments) give no evidence. A moving person, a door swung open between
+/// the scans contradict a right motion too, but only over a short stretch: contradicted runs shorter than
+/// `min_run_length` along the contour are not counted.
 
 #include <vector>
 
