@@ -77,6 +77,30 @@ TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
   EXPECT_EQ(sides.rows, 500);
 }
 
+// A corridor with a door recess every 3 m, closed 9 m ahead: one door back, the walls still
+// fit, but the end wall lands where the other scan looked through.
+TEST(DebugImages, PairImageShowsTheContourAMotionPutsInFreeSpace) {
+  simulation::World corridor;
+  corridor.addSegment({-15.0, 1.3}, {9.0, 1.3});
+  corridor.addSegment({9.0, 1.3}, {9.0, -1.2});
+  for (double x = -15.0; x < 9.0; x += 3.0) {
+    corridor.addSegment({x, -1.2}, {x + 2.1, -1.2});
+    corridor.addSegment({x + 2.1, -1.2}, {x + 2.1, -1.4});
+    corridor.addSegment({x + 2.1, -1.4}, {x + 3.0, -1.4});
+    corridor.addSegment({x + 3.0, -1.4}, {x + 3.0, -1.2});
+  }
+  const LaserScan target = test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1),
+                  source = test::scanFrom(corridor, test::pose2d(0.5, 0.0, 0), 0.01, 2);
+  const ContourFeatures ft = extractContourFeatures(target, ContourParams{}),
+                        fs = extractContourFeatures(source, ContourParams{});
+  RegistrationResult right, alias;
+  right.converged = alias.converged = true;
+  right.transform(0, 2) = 0.5;
+  alias.transform(0, 2) = 0.5 - 3.0;
+  EXPECT_EQ(countColour(drawPair(target, source, ft, fs, right, "right", 1200), Palette::freeSpace()), 0);
+  EXPECT_GT(countColour(drawPair(target, source, ft, fs, alias, "one door back", 1200), Palette::freeSpace()), 50);
+}
+
 TEST(DebugImages, TrajectoriesAreDrawnOverGroundTruth) {
   io::Trajectory truth, estimate;
   for (int k = 0; k < 50; ++k) {

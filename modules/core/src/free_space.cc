@@ -78,7 +78,8 @@ double RangeView::rangeAt(double bearing) const {
 }
 
 FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeView &target_view,
-                                    const Eigen::Matrix3d &motion, const FreeSpaceParams &params) {
+                                    const Eigen::Matrix3d &motion, const FreeSpaceParams &params,
+                                    std::vector<Eigen::Vector2d> *contradicted) {
   FreeSpaceEvidence evidence;
   const Eigen::Matrix2d rotation = motion.topLeftCorner<2, 2>();
   const Eigen::Vector2d translation = motion.topRightCorner<2, 1>();
@@ -99,6 +100,9 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
       if (extent > 0.0 && extent >= params.min_run_length) {
         evidence.contradicted_length += extent;
         ++evidence.contradicted_runs;
+        if (contradicted)
+          for (std::size_t k = run_start; k <= run_end; k += stride)
+            contradicted->push_back(rotation * Eigen::Vector2d(points[k].real(), points[k].imag()) + translation);
       }
       in_run = false;
     };

@@ -65,9 +65,12 @@ class RangeView {
   double max_gap_ = 0.0;  // rad, bracketing returns farther apart than this leave a gap
 };
 
-/// The evidence of `target`'s view against the source's contour moved by `motion` (source to target).
+/// The evidence of `target`'s view against the source's contour moved by `motion` (source to
+/// target). With `contradicted`, the checked points of the counted runs are appended to it,
+/// moved into the target frame (for pictures).
 FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeView &target_view,
-                                    const Eigen::Matrix3d &motion, const FreeSpaceParams &params);
+                                    const Eigen::Matrix3d &motion, const FreeSpaceParams &params,
+                                    std::vector<Eigen::Vector2d> *contradicted = nullptr);
 
 /// Both ways: the source's contour in the target's view and the target's in the source's.
 FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const RangeView &source_view,

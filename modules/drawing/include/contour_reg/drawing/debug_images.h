@@ -30,6 +30,7 @@ struct Palette {
   static cv::Scalar outlier() { return {60, 60, 220}; }      ///< light red
   static cv::Scalar candidate() { return {170, 170, 170}; }  ///< grey
   static cv::Scalar warning() { return {0, 0, 255}; }        ///< pure red text
+  static cv::Scalar freeSpace() { return {200, 0, 200}; }    ///< magenta: contour in the other scan's free space
 };
 
 /// A metric-to-pixel map for a square-ish panel: y up, 1 m = `scale` px.
@@ -50,7 +51,8 @@ cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const C
 
 /// One pair: left, both scans in their own frames with special points, candidate pairs
 /// (grey), RANSAC inliers (green) and outliers (red); right, the source moved onto the
-/// target by the result (or the failure reason when it did not converge).
+/// target by the result (or the failure reason when it did not converge), and in magenta the
+/// contour that motion puts in the other scan's free space (free_space.h).
 cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const ContourFeatures &target_features,
                  const ContourFeatures &source_features, const RegistrationResult &result, const std::string &title,
                  int width = 1600);
