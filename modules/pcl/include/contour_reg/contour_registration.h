@@ -51,12 +51,13 @@ namespace contour_reg {
 /// with the guess) are dropped. With the paper's rotation-dependent fragment distance
 /// (FragmentDistance::kReal), the source fragments are first turned by the guess's yaw.
 ///
-/// Failure: hasConverged() is false and getFailureReason() says why (too few special
-/// points, too few inliers, degenerate geometry); the final transformation is the guess.
-/// An empty or all-NaN cloud is reported with PCL_ERROR. isDegenerate() flags converged
-/// estimates left unconstrained in some direction (a corridor or a single wall with fewer
-/// than three inlier corners); contour_reg's odometry treats them as failures.
-/// getCovariance() gives the 3x3 covariance of x, y, yaw (calibrated: mean NEES about 3).
+/// Failure: hasConverged() is false, getResult().status names the verdict (too few special
+/// points, low overlap, unconstrained, ambiguous, ...; see RegistrationStatus) and
+/// getFailureReason() says it in words; the final transformation is the guess. An empty or
+/// all-NaN cloud is reported with PCL_ERROR. isDegenerate() flags converged estimates left
+/// unconstrained in some direction (a corridor or a single wall with fewer than three inlier
+/// corners); contour_reg's odometry treats them as failures. getCovariance() gives the 3x3
+/// covariance of x, y, yaw (docs/reliability.md: its calibration on simulated and real scans).
 template <typename PointSource, typename PointTarget, typename Scalar = float>
 class ContourRegistration : public pcl::Registration<PointSource, PointTarget, Scalar> {
  public:
