@@ -17,27 +17,13 @@ Eigen::Matrix3d motionBetween(const Eigen::Isometry2d &target, const Eigen::Isom
   return rigidTransform(m.translation().x(), m.translation().y(), std::atan2(m.linear()(1, 0), m.linear()(0, 0)));
 }
 
-// A corridor with a door recess every 3 m along one wall, closed 9 m ahead.
-simulation::World corridorOfDoors() {
-  simulation::World corridor;
-  corridor.addSegment({-15.0, 1.3}, {9.0, 1.3});
-  corridor.addSegment({9.0, 1.3}, {9.0, -1.2});
-  for (double x = -15.0; x < 9.0; x += 3.0) {
-    corridor.addSegment({x, -1.2}, {x + 2.1, -1.2});
-    corridor.addSegment({x + 2.1, -1.2}, {x + 2.1, -1.4});
-    corridor.addSegment({x + 2.1, -1.4}, {x + 3.0, -1.4});
-    corridor.addSegment({x + 3.0, -1.4}, {x + 3.0, -1.2});
-  }
-  return corridor;
-}
-
 FreeSpaceEvidence evidenceAt(const ContourFeatures &source, const ContourFeatures &target, const Eigen::Matrix3d &m,
                              const FreeSpaceParams &params = {}) {
   return mutualFreeSpaceEvidence(source, RangeView(source), target, RangeView(target), m, params);
 }
 
 TEST(FreeSpace, RefutesAMotionOnePeriodOffAlongARowOfDoors) {
-  const simulation::World corridor = corridorOfDoors();
+  const simulation::World corridor = test::corridorOfDoors();
   const Eigen::Isometry2d target_pose = test::pose2d(0, 0, 0), source_pose = test::pose2d(0.5, 0.05, 2);
   const ContourFeatures target = featuresFrom(corridor, target_pose, 1),
                         source = featuresFrom(corridor, source_pose, 2);

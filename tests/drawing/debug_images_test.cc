@@ -80,15 +80,7 @@ TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
 // A corridor with a door recess every 3 m, closed 9 m ahead: one door back, the walls still
 // fit, but the end wall lands where the other scan looked through.
 TEST(DebugImages, PairImageShowsTheContourAMotionPutsInFreeSpace) {
-  simulation::World corridor;
-  corridor.addSegment({-15.0, 1.3}, {9.0, 1.3});
-  corridor.addSegment({9.0, 1.3}, {9.0, -1.2});
-  for (double x = -15.0; x < 9.0; x += 3.0) {
-    corridor.addSegment({x, -1.2}, {x + 2.1, -1.2});
-    corridor.addSegment({x + 2.1, -1.2}, {x + 2.1, -1.4});
-    corridor.addSegment({x + 2.1, -1.4}, {x + 3.0, -1.4});
-    corridor.addSegment({x + 3.0, -1.4}, {x + 3.0, -1.2});
-  }
+  const simulation::World corridor = test::corridorOfDoors();
   const LaserScan target = test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1),
                   source = test::scanFrom(corridor, test::pose2d(0.5, 0.0, 0), 0.01, 2);
   const ContourFeatures ft = extractContourFeatures(target, ContourParams{}),

@@ -56,6 +56,20 @@ struct RoomWithBoxes {
   }
 };
 
+/// A corridor 2.5 m wide with a door recess every 3 m along one wall, closed 9 m ahead of the origin.
+inline simulation::World corridorOfDoors() {
+  simulation::World corridor;
+  corridor.addSegment({-15.0, 1.3}, {9.0, 1.3});
+  corridor.addSegment({9.0, 1.3}, {9.0, -1.2});
+  for (double x = -15.0; x < 9.0; x += 3.0) {
+    corridor.addSegment({x, -1.2}, {x + 2.1, -1.2});
+    corridor.addSegment({x + 2.1, -1.2}, {x + 2.1, -1.4});
+    corridor.addSegment({x + 2.1, -1.4}, {x + 3.0, -1.4});
+    corridor.addSegment({x + 3.0, -1.4}, {x + 3.0, -1.2});
+  }
+  return corridor;
+}
+
 inline LaserScan scanFrom(const simulation::World &world, const Eigen::Isometry2d &pose, double noise = 0.0,
                           unsigned seed = 42) {
   simulation::LidarModel model = simulation::LidarModel::hokuyoUtm30lx();

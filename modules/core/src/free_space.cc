@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "contour_reg/core/transform_estimation.h"
 #include "validation.h"
 
 namespace contour_reg {
@@ -53,10 +54,10 @@ void RangeView::assign(const ContourFeatures &scan) {
   }
   max_gap_ = 0.0;
   if (bearings_.size() < 2) return;
-  std::vector<double> spacing(bearings_.size() - 1);
-  for (std::size_t k = 1; k < bearings_.size(); ++k) spacing[k - 1] = bearings_[k] - bearings_[k - 1];
-  std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
-  max_gap_ = kGapSpacings * spacing[spacing.size() / 2];
+  spacing_.resize(bearings_.size() - 1);
+  for (std::size_t k = 1; k < bearings_.size(); ++k) spacing_[k - 1] = bearings_[k] - bearings_[k - 1];
+  std::nth_element(spacing_.begin(), spacing_.begin() + spacing_.size() / 2, spacing_.end());
+  max_gap_ = kGapSpacings * spacing_[spacing_.size() / 2];
 }
 
 double RangeView::rangeAt(double bearing) const {
@@ -129,12 +130,14 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
 
 FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const RangeView &source_view,
                                           const ContourFeatures &target, const RangeView &target_view,
-                                          const Eigen::Matrix3d &motion, const FreeSpaceParams &params) {
-  FreeSpaceEvidence evidence = freeSpaceEvidence(source, target_view, motion, params);
-  Eigen::Matrix3d inverse = Eigen::Matrix3d::Identity();
-  inverse.topLeftCorner<2, 2>() = motion.topLeftCorner<2, 2>().transpose();
-  inverse.topRightCorner<2, 1>() = -inverse.topLeftCorner<2, 2>() * motion.topRightCorner<2, 1>();
-  evidence += freeSpaceEvidence(target, source_view, inverse, params);
+                                          const Eigen::Matrix3d &motion, const FreeSpaceParams &params,
+                                          std::vector<Eigen::Vector2d> *contradicted) {
+  FreeSpaceEvidence evidence = freeSpaceEvidence(source, target_view, motion, params, contradicted);
+  const std::size_t first_target_point = contradicted ? contradicted->size() : 0;
+  evidence += freeSpaceEvidence(target, source_view, rigidInverse(motion), params, contradicted);
+  if (contradicted)  // the target's points were moved into the source frame: back into their own
+    for (std::size_t k = first_target_point; k < contradicted->size(); ++k)
+      (*contradicted)[k] = motion.topLeftCorner<2, 2>() * (*contradicted)[k] + motion.topRightCorner<2, 1>();
   return evidence;
 }
 

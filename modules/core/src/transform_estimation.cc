@@ -66,4 +66,11 @@ Eigen::Matrix3d rigidTransform(double x, double y, double yaw) {
 
 double yawOf(const Eigen::Matrix3d &transform) { return std::atan2(transform(1, 0), transform(0, 0)); }
 
+Eigen::Matrix3d rigidInverse(const Eigen::Matrix3d &rigid) {
+  Eigen::Matrix3d inverse = Eigen::Matrix3d::Identity();
+  inverse.topLeftCorner<2, 2>() = rigid.topLeftCorner<2, 2>().transpose();
+  inverse.topRightCorner<2, 1>() = -inverse.topLeftCorner<2, 2>() * rigid.topRightCorner<2, 1>();
+  return inverse;
+}
+
 }  // namespace contour_reg

@@ -228,24 +228,15 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
   drawPoints(right, overlay, moved, Palette::source(), 1);
   // What the motion puts in free space: source contour where the target looked through, and
   // target contour where the source did (free_space.h), both in the target frame.
-  std::vector<Eigen::Vector2d> contradicted, seen_through;
-  const FreeSpaceParams free_space;
-  Eigen::Matrix3d inverse = Eigen::Matrix3d::Identity();  // target to source, rigid
-  inverse.topLeftCorner<2, 2>() = result.transform.topLeftCorner<2, 2>().transpose();
-  inverse.topRightCorner<2, 1>() = -inverse.topLeftCorner<2, 2>() * result.transform.topRightCorner<2, 1>();
-  const FreeSpaceEvidence ahead =
-      freeSpaceEvidence(source_features, RangeView(target_features), result.transform, free_space, &contradicted);
-  const FreeSpaceEvidence behind =
-      freeSpaceEvidence(target_features, RangeView(source_features), inverse, free_space, &seen_through);
-  for (Eigen::Vector2d &p : seen_through)
-    p = result.transform.topLeftCorner<2, 2>() * p + result.transform.topRightCorner<2, 1>();
-  contradicted.insert(contradicted.end(), seen_through.begin(), seen_through.end());
+  std::vector<Eigen::Vector2d> contradicted;
+  const FreeSpaceEvidence evidence_against =
+      mutualFreeSpaceEvidence(source_features, RangeView(source_features), target_features, RangeView(target_features),
+                              result.transform, FreeSpaceParams{}, &contradicted);
   drawPoints(right, overlay, contradicted, Palette::freeSpace(), 3);
   decorate(right, overlay);
   char evidence[160];
   std::snprintf(evidence, sizeof evidence, "in the other scan's free space: %.1f m of contour (%.0f %%)",
-                ahead.contradicted_length + behind.contradicted_length,
-                100.0 * (FreeSpaceEvidence(ahead) += behind).fraction());
+                evidence_against.contradicted_length, 100.0 * evidence_against.fraction());
   text(right, evidence, {15, height - 40}, 0.5, contradicted.empty() ? kBlack : Palette::freeSpace());
   const io::Pose2D pose = io::toPose(result.transform);
   char line[200];

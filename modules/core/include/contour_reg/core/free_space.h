@@ -62,7 +62,8 @@ class RangeView {
 
  private:
   std::vector<double> bearings_, ranges_;
-  double max_gap_ = 0.0;  // rad, bracketing returns farther apart than this leave a gap
+  std::vector<double> spacing_;  // working memory of assign()
+  double max_gap_ = 0.0;         // rad, bracketing returns farther apart than this leave a gap
 };
 
 /// The evidence of `target`'s view against the source's contour moved by `motion` (source to
@@ -73,8 +74,10 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
                                     std::vector<Eigen::Vector2d> *contradicted = nullptr);
 
 /// Both ways: the source's contour in the target's view and the target's in the source's.
+/// With `contradicted`, the points of both scans' counted runs are appended to it, in the target frame.
 FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const RangeView &source_view,
                                           const ContourFeatures &target, const RangeView &target_view,
-                                          const Eigen::Matrix3d &motion, const FreeSpaceParams &params);
+                                          const Eigen::Matrix3d &motion, const FreeSpaceParams &params,
+                                          std::vector<Eigen::Vector2d> *contradicted = nullptr);
 
 }  // namespace contour_reg

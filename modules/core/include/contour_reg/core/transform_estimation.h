@@ -31,6 +31,9 @@ Eigen::Matrix3d rigidPart(const Eigen::Matrix3d &affine);
 /// A rigid transform from x, y (m) and yaw (rad).
 Eigen::Matrix3d rigidTransform(double x, double y, double yaw);
 
+/// The inverse of a rigid transform (rotation transposed, translation turned back).
+Eigen::Matrix3d rigidInverse(const Eigen::Matrix3d &rigid);
+
 /// The yaw of a rigid (or nearly rigid) transform.
 double yawOf(const Eigen::Matrix3d &transform);
 
