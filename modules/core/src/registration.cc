@@ -1,8 +1,12 @@
 #include "contour_reg/core/registration.h"
-#include "contour_reg/core/direction_histogram.h"
 
 #include <algorithm>
 #include <cmath>
+
+#include "decision/generate.h"
+#include "decision/judge.h"
+#include "decision/refine.h"
+#include "decision/score.h"
 
 namespace contour_reg {
 
@@ -107,192 +111,6 @@ bool isUndecided(RegistrationStatus status) {
 
 namespace {
 
-// The best of several starting motions refined on the contours, its score, and whether a
-// distinct motion scores about as well (the scans cannot tell them apart).
-struct BestRefinement {
-  RefinementResult best;
-  bool ambiguous = false;
-  bool scored = false;  // whether `score` holds the best's score yet: it is computed when first needed
-  double score = 0.0;
-};
-
-// Scores refined motions in one unit, a fraction of the contour: the share of the source
-// contour the refinement paired (overlap) less the share of both contours the motion puts in
-// the other scan's free space (free_space.h). Each scan's view is built on first use, so a
-// registration that needs no comparison of motions builds none; the target's is kept in the
-// buffers for the next call with the same target extraction.
-class Scorer {
- public:
-  Scorer(const ContourFeatures &source, const ContourFeatures &target, const FreeSpaceParams &params,
-         RegistrationBuffers &buffers)
-      : source_(source), target_(target), params_(params), buffers_(buffers) {}
-
-  double contradiction(const Eigen::Matrix3d &motion) {
-    if (!params_.enabled) return 0.0;
-    if (!views_ready_) {
-      if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
-        buffers_.target_view.assign(target_);
-        buffers_.viewed_target = target_.extraction;
-      }
-      buffers_.source_view.assign(source_);
-      views_ready_ = true;
-    }
-    return mutualFreeSpaceEvidence(source_, buffers_.source_view, target_, buffers_.target_view, motion, params_)
-        .fraction();
-  }
-  double score(const RefinementResult &refined) { return refined.overlap - contradiction(refined.transform); }
-  double score(BestRefinement &found) {
-    if (!found.scored) found.score = score(found.best);
-    found.scored = true;
-    return found.score;
-  }
-
- private:
-  const ContourFeatures &source_, &target_;
-  const FreeSpaceParams &params_;
-  RegistrationBuffers &buffers_;
-  bool views_ready_ = false;
-};
-
-// The refiner of `buffers`, indexing `target` (rebuilt only for a different extraction).
-const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuffers &buffers) {
-  if (target.extraction == 0 || buffers.indexed_target != target.extraction) {
-    buffers.refiner.setTarget(target);
-    buffers.indexed_target = target.extraction;
-  }
-  return buffers.refiner;
-}
-
-// Refined motions whose scores (fractions of the contour) differ by less than this fit about as well.
-constexpr double kOverlapTie = 0.05;
-
-// How far apart two motions are: m, with 1 m per rad of turn.
-double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
-  return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
-         std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
-}
-
-// Motions farther apart than this (motionDistance) are distinct answers.
-constexpr double kDistinctMotions = 0.2;
-
-// The refinement settings for a start that may be far off (the guess): pairing begins at
-// local_fallback_max_distance.
-RefinementParams widened(const RegistrationParams &params) {
-  RefinementParams wide = params.refinement;
-  wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
-  return wide;
-}
-
-// The best score wins; where scores tie, the motion nearest the guess (no motion without
-// one) wins. Many starts are first screened by a short, sparse refinement on overlap alone;
-// the most promising few are refined in full and scored.
-BestRefinement refineBest(const ContourFeatures &source, const ContourFeatures &target,
-                          std::vector<RefinementStart> &starts, const Eigen::Matrix3d *guess,
-                          RegistrationBuffers &buffers, Scorer &scorer) {
-  const ContourRefiner &refiner = refinerFor(target, buffers);
-  // The starts share their sample spacing: the source is sampled once for the full
-  // refinements and once, twice as sparse, for the screening.
-  const double step = starts.front().params->sample_step;
-  std::vector<Eigen::Vector2d> &samples = buffers.samples;
-  contourSamples(source, step, samples);
-  constexpr std::size_t kRefinedInFull = 3;
-  if (starts.size() > kRefinedInFull) {
-    std::vector<Eigen::Vector2d> &sparse = buffers.sparse_samples;
-    contourSamples(source, 2.0 * step, sparse);
-    struct Screened {
-      double overlap;
-      std::size_t start;
-      Eigen::Matrix3d motion;  // after the short refinement
-    };
-    std::vector<Screened> screened;
-    for (std::size_t k = 0; k < starts.size(); ++k) {
-      RefinementParams quick = *starts[k].params;
-      quick.max_iterations = 2;
-      const RefinementResult r = refiner.refine(sparse, rigidPart(starts[k].motion), quick);
-      screened.push_back({r.overlap, k, r.transform});
-    }
-    std::stable_sort(screened.begin(), screened.end(),
-                     [](const Screened &a, const Screened &b) { return a.overlap > b.overlap; });
-    // The best few that lead to distinct motions: two starts bound for one motion test nothing new.
-    std::vector<const Screened *> chosen;
-    for (const Screened &s : screened) {
-      if (chosen.size() == kRefinedInFull) break;
-      if (std::none_of(chosen.begin(), chosen.end(),
-                       [&](const Screened *c) { return motionDistance(c->motion, s.motion) < 0.1; }))
-        chosen.push_back(&s);
-    }
-    std::vector<RefinementStart> kept;
-    for (const Screened *c : chosen) kept.push_back(starts[c->start]);
-    starts = kept;
-  }
-  std::vector<RefinementResult> &refined = buffers.refined;
-  refined.clear();
-  for (const RefinementStart &start : starts)
-    refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
-  if (refined.size() == 1) return BestRefinement{refined.front()};  // nothing to compare: scored when needed
-  const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
-  double scores[kRefinedInFull + 1];  // starts hold at most kRefinedInFull here, or fewer to begin with
-  for (std::size_t k = 0; k < refined.size(); ++k) scores[k] = scorer.score(refined[k]);
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < refined.size(); ++k) {
-    const bool better = scores[k] > scores[best] + kOverlapTie ||
-                        (scores[k] > scores[best] - kOverlapTie &&
-                         motionDistance(refined[k].transform, prior) < motionDistance(refined[best].transform, prior));
-    if (better) best = k;
-  }
-  BestRefinement result{refined[best], false, true, scores[best]};
-  for (std::size_t k = 0; k < refined.size(); ++k)
-    if (scores[k] > scores[best] - kOverlapTie &&
-        motionDistance(refined[k].transform, refined[best].transform) > kDistinctMotions)
-      result.ambiguous = true;
-  return result;
-}
-
-// A probe has settled back when it ends within this fraction of the probe distance.
-constexpr double kSettledBack = 0.25;
-
-// Whether `best` is pinned along its weakest direction (RefinementResult::weakest_direction):
-// started `probe` m off along it, both ways, the refinement of the source's `samples` against
-// the `refiner`'s target must settle back on it, or at least fit worse where it settles. In a
-// room the probes come back or lose overlap; a bare corridor, a circle turned about its
-// centre, a corridor whose axis only a small stub constrains leave them elsewhere with as
-// good a fit. A probe distance of 0 turns the check off.
-bool settlesBack(BestRefinement &found, double probe, const RefinementParams &params, const ContourRefiner &refiner,
-                 const std::vector<Eigen::Vector2d> &samples, Scorer &scorer) {
-  const RefinementResult &best = found.best;
-  if (!(probe > 0.0)) return true;
-  if (best.weakest_direction.isZero()) return false;
-  // Each probe starts `probe` m off: its first pairing distance reaches that much further.
-  RefinementParams from_probe = params;
-  from_probe.max_distance = params.max_distance + probe;
-  const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
-  for (const double sign : {1.0, -1.0}) {
-    const Eigen::Vector3d off = sign * probe * best.weakest_direction;
-    const RefinementResult r =
-        refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe);
-    // How far from `best` the probe settled, rotation in metres of arc.
-    const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
-                                        std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
-                            .norm();
-    if (left > kSettledBack * probe && scorer.score(r) > scorer.score(found) - kOverlapTie) return false;
-  }
-  return true;
-}
-
-// The contours' own answer: the guess (none: no motion) refined from the wider pairing distance.
-RefinementResult refineFromGuess(const RegistrationParams &params, const Eigen::Matrix3d *guess,
-                                 const ContourRefiner &refiner, const std::vector<Eigen::Vector2d> &samples) {
-  return refiner.refine(samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params));
-}
-
-// Whether `best` stands against the motion the contours settle on from the guess: they agree,
-// or that motion scores clearly worse. A few corners along repeated structure (a door every few
-// metres) can match one period off, where the contours fit about as well as at the true motion.
-bool standsAgainstGuess(BestRefinement &found, const RefinementResult &from_guess, Scorer &scorer) {
-  return motionDistance(found.best.transform, from_guess.transform) <= kDistinctMotions ||
-         scorer.score(from_guess) <= scorer.score(found) - kOverlapTie;
-}
-
 // Empties `result`, keeping the buffers of its lists.
 void reset(RegistrationResult &result) {
   std::vector<Correspondence> candidates = std::move(result.candidates);
@@ -396,11 +214,11 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     // RANSAC may end with rival motions as well supported as its best (a symmetric room
     // seen from two corners matched crosswise): each is refined, and the contours decide.
     std::vector<RefinementStart> &starts = buffers.starts;
-    starts.assign(1, {coarse, &params.refinement});
-    for (const Eigen::Matrix3d &rival : found.rivals) starts.push_back({rival, &params.refinement});
-    Scorer scorer(source, target, params.free_space, buffers);
-    BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
-    const RefinementResult &refined = found.best;
+    decision::cornerHypotheses(coarse, found.rivals, params.refinement, starts);
+    decision::Scorer scorer(source, target, params.free_space, buffers);
+    decision::Judged judged =
+        decision::chooseBest(decision::refineHypotheses(source, target, starts, buffers), guess, scorer);
+    const RefinementResult &refined = judged.best.refined;
     result.contour_rmse = refined.rmse;
     result.overlap = refined.overlap;
     result.covariance = refined.covariance;
@@ -409,76 +227,34 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     result.degenerate = refined.degenerate && corners < 3;
     result.transform = refined.transform;
     // The contours must confirm what the corners agree on; a motion they do not confirm goes
-    // back to the guess, and the local fallback decides.
-    auto decline = [&](const std::string &why) {
-      failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
-                  "too few inliers: " + std::to_string(corners) + " special points" + why);
-    };
-    // Two corners need a large overlap, more a modest one.
-    if (refined.overlap < (verify_two ? params.two_inlier_min_overlap : params.corner_min_overlap))
-      return decline(" agree, but the contours overlap only " +
-                     std::to_string(static_cast<int>(100 * refined.overlap)) + " % after alignment");
-    // A few corners, often along one wall, pin the motion no better than they are spread:
-    // the contours must pin it too.
-    if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&
-        !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
-      return decline(", and the contours leave a direction weakly constrained");
-    if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
-        !standsAgainstGuess(found, refineFromGuess(params, guess, buffers.refiner, buffers.samples), scorer))
-      return decline(", and the contours fit a distinct motion from the guess as well");
+    // back to the guess, and the contours' own hypotheses decide.
+    const std::string against = decision::judgeCornerMotion(judged, corners, params, guess, buffers, scorer);
+    if (!against.empty())
+      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
+                         "too few inliers: " + std::to_string(corners) + " special points" + against);
   }
   result.converged = true;
   result.status = RegistrationStatus::kConverged;
   result.reason.clear();
 }
 
-// Few corners: the guess, a motion one pair of corners implies, or a motion the contours'
-// directions suggest, refined on the contours and kept when well supported and unambiguous.
-constexpr std::size_t kMaxPairHypotheses = 8;
+// Few corners: the contours' own hypotheses, refined and judged.
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                       const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, RegistrationResult &result) {
-  // The guess may be far off: it is refined from a wider pairing distance.
-  const RefinementParams wide = widened(params);
-  std::vector<RefinementStart> starts{{guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), &wide}};
-  // Each candidate pair of corners is a full hypothesis on its own: the rotation arg (N, G)
-  // of eq. (14) and the translation that brings the two corners together.
-  if (params.correspondence.distance == FragmentDistance::kModulus) {
-    std::vector<Correspondence> found_pairs;  // only when the corners stopped before pairing
-    if (result.candidates.empty())
-      found_pairs = findCorrespondences(source.special_points, target.special_points, params.correspondence);
-    const std::vector<Correspondence> &pairs = result.candidates.empty() ? found_pairs : result.candidates;
-    for (std::size_t k = 0; k < pairs.size() && k < kMaxPairHypotheses; ++k) {
-      const Correspondence &c = pairs[k];
-      const Eigen::Matrix3d turn = rigidTransform(0.0, 0.0, c.rotation);
-      const Eigen::Vector2d moved = target.special_points[c.target].position -
-                                    turn.topLeftCorner<2, 2>() * source.special_points[c.source].position;
-      starts.push_back({rigidTransform(moved.x(), moved.y(), c.rotation), &params.refinement});
-    }
-  }
-  if (params.direction_hypotheses)
-    for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, params.direction_histogram, guess))
-      starts.push_back({motion, &params.refinement});
-
-  Scorer scorer(source, target, params.free_space, buffers);
-  BestRefinement found = refineBest(source, target, starts, guess, buffers, scorer);
-  const RefinementResult &refined = found.best;
-  if (refined.overlap < params.local_fallback_min_overlap) {
-    result.status = RegistrationStatus::kLowOverlap;
-    result.reason += "; refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
-                     " % of the source contour lies on the target";
+  const RefinementParams wide = decision::widened(params);
+  std::vector<RefinementStart> &starts = buffers.starts;
+  decision::contourHypotheses(source, target, params, guess, result.candidates, wide, starts);
+  decision::Scorer scorer(source, target, params.free_space, buffers);
+  decision::Judged judged =
+      decision::chooseBest(decision::refineHypotheses(source, target, starts, buffers), guess, scorer);
+  std::string why;
+  const RegistrationStatus verdict = decision::judgeContourMotion(judged, params, buffers, scorer, why);
+  if (verdict != RegistrationStatus::kConverged) {
+    result.status = verdict;
+    result.reason += "; " + why;
     return;
   }
-  if (refined.degenerate ||
-      !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer)) {
-    result.status = RegistrationStatus::kUnconstrained;
-    result.reason += "; refined on the contours, a direction stays weakly constrained (corridor, circle)";
-    return;
-  }
-  if (found.ambiguous) {
-    result.status = RegistrationStatus::kAmbiguous;
-    result.reason += "; refined on the contours, distinct motions fit equally well (repeated structure)";
-    return;
-  }
+  const RefinementResult &refined = judged.best.refined;
   result.transform = refined.transform;
   result.contour_rmse = refined.rmse;
   result.overlap = refined.overlap;

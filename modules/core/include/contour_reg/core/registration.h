@@ -7,6 +7,11 @@
 /// maps source coordinates into the target frame, q = H p, as PCL's Registration does.
 /// "Converged" means a supported, non-degenerate estimate; otherwise `status` and
 /// `reason` say why not, and the transform is the guess (or identity).
+///
+/// How it decides between candidate motions is four stages in modules/core/src/decision/:
+/// generate (RANSAC's best and rivals; without a corner decision, the guess, single corner
+/// pairs and the contour directions), refine (on the contours), score (contour overlap less
+/// free-space contradiction) and judge (supported, pinned, unrivalled; or the verdict).
 
 #include <cstdint>
 #include <ostream>

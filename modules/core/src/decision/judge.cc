@@ -1,0 +1,115 @@
+#include "judge.h"
+
+#include <cmath>
+
+#include "contour_reg/core/transform_estimation.h"
+#include "generate.h"
+
+namespace contour_reg::decision {
+
+namespace {
+
+// A probe has settled back when it ends within this fraction of the probe distance.
+constexpr double kSettledBack = 0.25;
+
+// Whether the best is pinned along its weakest direction (RefinementResult::weakest_direction):
+// started `probe` m off along it, both ways, the refinement of the source's `samples` against
+// the `refiner`'s target must settle back on it, or at least score worse where it settles. A
+// probe distance of 0 turns the check off.
+bool settlesBack(Judged &found, double probe, const RefinementParams &params, const ContourRefiner &refiner,
+                 const std::vector<Eigen::Vector2d> &samples, Scorer &scorer) {
+  const RefinementResult &best = found.best.refined;
+  if (!(probe > 0.0)) return true;
+  if (best.weakest_direction.isZero()) return false;
+  // Each probe starts `probe` m off: its first pairing distance reaches that much further.
+  RefinementParams from_probe = params;
+  from_probe.max_distance = params.max_distance + probe;
+  const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
+  for (const double sign : {1.0, -1.0}) {
+    const Eigen::Vector3d off = sign * probe * best.weakest_direction;
+    const RefinementResult r =
+        refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe);
+    // How far from the best the probe settled, rotation in metres of arc.
+    const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
+                                        std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
+                            .norm();
+    if (left > kSettledBack * probe && scorer.score(r) > scorer.score(found.best) - kScoreTie) return false;
+  }
+  return true;
+}
+
+// Whether the best stands against the contours' own answer, the guess (none: no motion)
+// refined from the wider pairing distance: they agree, or that answer scores clearly worse.
+// A few corners along repeated structure (a door every few metres) can match one period off,
+// where the contours fit about as well as at the true motion.
+bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
+                        RegistrationBuffers &buffers, Scorer &scorer) {
+  const RefinementResult from_guess =
+      buffers.refiner.refine(buffers.samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params));
+  return motionDistance(found.best.refined.transform, from_guess.transform) <= kDistinctMotions ||
+         scorer.score(from_guess) <= scorer.score(found.best) - kScoreTie;
+}
+
+}  // namespace
+
+Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Matrix3d *guess, Scorer &scorer) {
+  if (refined.size() == 1) return Judged{{refined.front()}};
+  const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
+  std::vector<double> scores;
+  for (const RefinementResult &r : refined) scores.push_back(scorer.score(r));
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < refined.size(); ++k) {
+    const bool better = scores[k] > scores[best] + kScoreTie ||
+                        (scores[k] > scores[best] - kScoreTie &&
+                         motionDistance(refined[k].transform, prior) < motionDistance(refined[best].transform, prior));
+    if (better) best = k;
+  }
+  Judged result{{refined[best], true, scores[best]}};
+  for (std::size_t k = 0; k < refined.size(); ++k)
+    if (scores[k] > scores[best] - kScoreTie &&
+        motionDistance(refined[k].transform, refined[best].transform) > kDistinctMotions)
+      result.ambiguous = true;
+  return result;
+}
+
+std::string judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
+                              const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, Scorer &scorer) {
+  const RefinementResult &refined = found.best.refined;
+  // Two corners need a large overlap, more a modest one.
+  const double min_overlap = corners == 2 ? params.two_inlier_min_overlap : params.corner_min_overlap;
+  if (refined.overlap < min_overlap)
+    return " agree, but the contours overlap only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+           " % after alignment";
+  // A few corners, often along one wall, pin the motion no better than they are spread:
+  // the contours must pin it too.
+  if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&
+      !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
+    return ", and the contours leave a direction weakly constrained";
+  if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
+      !standsAgainstGuess(found, params, guess, buffers, scorer))
+    return ", and the contours fit a distinct motion from the guess as well";
+  return {};
+}
+
+RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
+                                      Scorer &scorer, std::string &why) {
+  const RefinementResult &refined = found.best.refined;
+  if (refined.overlap < params.local_fallback_min_overlap) {
+    why = "refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+          " % of the source contour lies on the target";
+    return RegistrationStatus::kLowOverlap;
+  }
+  if (refined.degenerate ||
+      !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer)) {
+    why = "refined on the contours, a direction stays weakly constrained (corridor, circle)";
+    return RegistrationStatus::kUnconstrained;
+  }
+  if (found.ambiguous) {
+    why = "refined on the contours, distinct motions fit equally well (repeated structure)";
+    return RegistrationStatus::kAmbiguous;
+  }
+  why.clear();
+  return RegistrationStatus::kConverged;
+}
+
+}  // namespace contour_reg::decision

@@ -1,0 +1,45 @@
+#pragma once
+/// @file judge.h
+/// The decision, stage 4 of 4 (generate, refine, score, judge): accept the best motion or say why not.
+///
+/// Of the refined candidates the best score wins (score.h); where scores tie, the motion
+/// nearest the guess (no motion without one). The best is accepted only when it is
+/// - supported: enough of the source contour lies on the target contour after alignment;
+/// - pinned in every direction: refined again from `probe_distance` off along its weakest
+///   direction, both ways, it settles back or fits worse where it settles (a room passes; a
+///   bare corridor, a circle seen from inside, a corridor only a short stub closes do not);
+/// - unrivalled: no distinct motion scores within the tie, among the refined candidates and,
+///   for a motion few corners decide, the contours' own answer from the guess.
+/// Free-space evidence enters through the score: a rival that puts walls where the other scan
+/// looked through empty space scores lower and is no rival.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contour_reg/core/registration.h"
+#include "score.h"
+
+namespace contour_reg::decision {
+
+/// The best of the refined candidates, and whether a distinct motion scores about as well.
+struct Judged {
+  ScoredMotion best;
+  bool ambiguous = false;
+};
+
+/// Picks the best of `refined` (not empty). A single candidate is not scored: nothing to compare.
+Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Matrix3d *guess, Scorer &scorer);
+
+/// The verdict on a motion that `corners` distinct inlier special points agree on: empty when
+/// the contours confirm it, otherwise what they found against it (to follow "N special points").
+std::string judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
+                              const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, Scorer &scorer);
+
+/// The verdict on the contours' own best motion when the corners did not decide: converged,
+/// low overlap, unconstrained or ambiguous, with the reason in `why`.
+RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
+                                      Scorer &scorer, std::string &why);
+
+}  // namespace contour_reg::decision

@@ -1,0 +1,63 @@
+#include "refine.h"
+
+#include <algorithm>
+
+#include "contour_reg/core/transform_estimation.h"
+#include "score.h"
+
+namespace contour_reg::decision {
+
+const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuffers &buffers) {
+  if (target.extraction == 0 || buffers.indexed_target != target.extraction) {
+    buffers.refiner.setTarget(target);
+    buffers.indexed_target = target.extraction;
+  }
+  return buffers.refiner;
+}
+
+const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &source, const ContourFeatures &target,
+                                                      std::vector<RefinementStart> &starts,
+                                                      RegistrationBuffers &buffers) {
+  const ContourRefiner &refiner = refinerFor(target, buffers);
+  // The starts share their sample spacing: the source is sampled once for the full
+  // refinements and once, twice as sparse, for the screening.
+  const double step = starts.front().params->sample_step;
+  std::vector<Eigen::Vector2d> &samples = buffers.samples;
+  contourSamples(source, step, samples);
+  if (starts.size() > kRefinedInFull) {
+    std::vector<Eigen::Vector2d> &sparse = buffers.sparse_samples;
+    contourSamples(source, 2.0 * step, sparse);
+    struct Screened {
+      double overlap;
+      std::size_t start;
+      Eigen::Matrix3d motion;  // after the short refinement
+    };
+    std::vector<Screened> screened;
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+      RefinementParams quick = *starts[k].params;
+      quick.max_iterations = 2;
+      const RefinementResult r = refiner.refine(sparse, rigidPart(starts[k].motion), quick);
+      screened.push_back({r.overlap, k, r.transform});
+    }
+    std::stable_sort(screened.begin(), screened.end(),
+                     [](const Screened &a, const Screened &b) { return a.overlap > b.overlap; });
+    // The best few that lead to distinct motions: two starts bound for one motion test nothing new.
+    std::vector<const Screened *> chosen;
+    for (const Screened &s : screened) {
+      if (chosen.size() == kRefinedInFull) break;
+      if (std::none_of(chosen.begin(), chosen.end(),
+                       [&](const Screened *c) { return motionDistance(c->motion, s.motion) < 0.1; }))
+        chosen.push_back(&s);
+    }
+    std::vector<RefinementStart> kept;
+    for (const Screened *c : chosen) kept.push_back(starts[c->start]);
+    starts = kept;
+  }
+  std::vector<RefinementResult> &refined = buffers.refined;
+  refined.clear();
+  for (const RefinementStart &start : starts)
+    refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
+  return refined;
+}
+
+}  // namespace contour_reg::decision

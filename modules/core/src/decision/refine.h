@@ -1,0 +1,30 @@
+#pragma once
+/// @file refine.h
+/// The decision, stage 2 of 4 (generate, refine, score, judge): the candidates refined on the contours.
+///
+/// Each candidate motion is refined point-to-line on the contours (refinement.h). With more
+/// candidates than kRefinedInFull, a cheap screening pass comes first: two iterations on a
+/// source sampled twice as sparse, ranked by overlap; the best few that lead to distinct motions
+/// are then refined in full. Hard pairs with many hypotheses stay fast this way.
+
+#include <vector>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/refinement.h"
+#include "contour_reg/core/registration.h"
+
+namespace contour_reg::decision {
+
+/// Candidates refined in full at most.
+constexpr std::size_t kRefinedInFull = 3;
+
+/// The refiner of `buffers`, indexing `target` (rebuilt only for a different extraction).
+const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuffers &buffers);
+
+/// Refines the most promising of `starts` (kept in `starts`) in full into buffers.refined, in
+/// the order of `starts`; buffers.samples then holds the source samples they were refined on.
+const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &source, const ContourFeatures &target,
+                                                      std::vector<RefinementStart> &starts,
+                                                      RegistrationBuffers &buffers);
+
+}  // namespace contour_reg::decision

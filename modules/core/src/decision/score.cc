@@ -1,0 +1,34 @@
+#include "score.h"
+
+#include <cmath>
+
+#include "contour_reg/core/transform_estimation.h"
+
+namespace contour_reg::decision {
+
+double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
+  return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
+         std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
+}
+
+double Scorer::contradiction(const Eigen::Matrix3d &motion) {
+  if (!params_.enabled) return 0.0;
+  if (!views_ready_) {
+    if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
+      buffers_.target_view.assign(target_);
+      buffers_.viewed_target = target_.extraction;
+    }
+    buffers_.source_view.assign(source_);
+    views_ready_ = true;
+  }
+  return mutualFreeSpaceEvidence(source_, buffers_.source_view, target_, buffers_.target_view, motion, params_)
+      .fraction();
+}
+
+double Scorer::score(ScoredMotion &motion) {
+  if (!motion.scored) motion.score = score(motion.refined);
+  motion.scored = true;
+  return motion.score;
+}
+
+}  // namespace contour_reg::decision

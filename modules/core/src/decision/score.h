@@ -1,0 +1,59 @@
+#pragma once
+/// @file score.h
+/// The decision, stage 3 of 4 (generate, refine, score, judge): one score per refined motion.
+///
+/// A refined motion scores the share of the source contour the refinement paired (its
+/// overlap) less the share of both contours the motion puts in the other scan's free space
+/// (free_space.h): one unit, a fraction of the contour. Overlap alone cannot tell a motion one
+/// door off along a row of doors from the truth; the walls and doors it lands on the other
+/// scan's seen-through space can. Motions whose scores differ by less than kScoreTie fit about
+/// as well; motions farther apart than kDistinctMotions (motionDistance) are distinct answers.
+
+#include <Eigen/Core>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/free_space.h"
+#include "contour_reg/core/refinement.h"
+#include "contour_reg/core/registration.h"
+
+namespace contour_reg::decision {
+
+/// Refined motions whose scores (fractions of the contour) differ by less than this fit about as well.
+constexpr double kScoreTie = 0.05;
+
+/// Motions farther apart than this (motionDistance) are distinct answers.
+constexpr double kDistinctMotions = 0.2;
+
+/// How far apart two motions are: m, with 1 m per rad of turn.
+double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b);
+
+/// A refined motion and its score, computed when first needed.
+struct ScoredMotion {
+  RefinementResult refined;
+  bool scored = false;
+  double score = 0.0;
+};
+
+/// Scores refined motions of one pair of scans. Each scan's view (RangeView) is built on
+/// first use, so a registration that compares no motions builds none; the target's is kept in
+/// the buffers for the next call with the same target extraction.
+class Scorer {
+ public:
+  Scorer(const ContourFeatures &source, const ContourFeatures &target, const FreeSpaceParams &params,
+         RegistrationBuffers &buffers)
+      : source_(source), target_(target), params_(params), buffers_(buffers) {}
+
+  /// The share of both contours `motion` puts in the other scan's free space (0 with free space off).
+  double contradiction(const Eigen::Matrix3d &motion);
+  /// Overlap less contradiction.
+  double score(const RefinementResult &refined) { return refined.overlap - contradiction(refined.transform); }
+  double score(ScoredMotion &motion);
+
+ private:
+  const ContourFeatures &source_, &target_;
+  const FreeSpaceParams &params_;
+  RegistrationBuffers &buffers_;
+  bool views_ready_ = false;
+};
+
+}  // namespace contour_reg::decision
