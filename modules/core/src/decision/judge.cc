@@ -75,6 +75,7 @@ Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Mat
 std::string judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
                               const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, Scorer &scorer) {
   const RefinementResult &refined = found.best.refined;
+  if (found.ambiguous) return ", but the contours fit a distinct motion of other corners as well";
   // Two corners need a large overlap, more a modest one.
   const double min_overlap = corners == 2 ? params.two_inlier_min_overlap : params.corner_min_overlap;
   if (refined.overlap < min_overlap)

@@ -1,0 +1,123 @@
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "contour_reg/core/registration.h"
+#include "contour_reg/core/transform_estimation.h"
+#include "scenes.h"
+
+namespace contour_reg {
+namespace {
+
+ContourFeatures featuresFrom(const simulation::World &world, const Eigen::Isometry2d &pose, unsigned seed) {
+  return extractContourFeatures(test::scanFrom(world, pose, 0.01, seed), ContourParams{});
+}
+
+RegistrationResult registerPair(const simulation::World &world, const Eigen::Isometry2d &target_pose,
+                                const Eigen::Isometry2d &source_pose, const RegistrationParams &params = {},
+                                const simulation::World *source_world = nullptr) {
+  const ContourFeatures target = featuresFrom(world, target_pose, 1);
+  const ContourFeatures source = featuresFrom(source_world ? *source_world : world, source_pose, 2);
+  std::mt19937 rng(3);
+  return registerContours(source, target, params, rng);
+}
+
+Eigen::Vector3d errorOf(const RegistrationResult &r, const Eigen::Isometry2d &target_pose,
+                        const Eigen::Isometry2d &source_pose) {
+  const Eigen::Isometry2d m = target_pose.inverse() * source_pose;
+  return Eigen::Vector3d(r.transform(0, 2) - m.translation().x(), r.transform(1, 2) - m.translation().y(),
+                         std::remainder(yawOf(r.transform) - std::atan2(m.linear()(1, 0), m.linear()(0, 0)), 2 * M_PI));
+}
+
+RegistrationParams withoutFreeSpace() {
+  RegistrationParams params;
+  params.free_space.enabled = false;
+  return params;
+}
+
+RegistrationParams withoutContourHypotheses() {
+  RegistrationParams params;
+  params.local_fallback_min_overlap = 0.0;  // the corners' verdict stands
+  return params;
+}
+
+// The source scan is 3 m ahead of the target along a corridor with a door every 3 m: one door
+// back, the identity, puts walls on walls and doors on doors as well as the truth does.
+TEST(Decision, FreeSpaceRefutesTheAliasOneDoorBack) {
+  const simulation::World corridor = test::corridorOfDoors();
+  const Eigen::Isometry2d target = test::pose2d(0, 0, 0), source = test::pose2d(3.0, 0.05, 1);
+
+  const RegistrationResult with = registerPair(corridor, target, source);
+  ASSERT_TRUE(with.converged) << with.reason;
+  EXPECT_LT(errorOf(with, target, source).head<2>().norm(), 0.05);
+
+  // Without the free-space term the contours cannot tell the truth from the identity, whose
+  // source end wall, 6 m ahead, lies where the target saw 9 m of free space.
+  const RegistrationResult without = registerPair(corridor, target, source, withoutFreeSpace());
+  EXPECT_FALSE(without.converged);
+  EXPECT_EQ(without.status, RegistrationStatus::kAmbiguous) << without.reason;
+}
+
+TEST(Decision, PeopleWalkingThroughDoNotRefuteTheRightMotion) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  simulation::World with_people = room;  // two people in the source scan only
+  with_people.addCircle({0.9, -0.2}, 0.2);
+  with_people.addCircle({-0.5, 0.8}, 0.2);
+  const Eigen::Isometry2d target = test::pose2d(0.0, -0.4, 10), source = test::pose2d(0.3, -0.3, 14);
+
+  const RegistrationResult r = registerPair(room, target, source, {}, &with_people);
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_LT(errorOf(r, target, source).head<2>().norm(), 0.02);
+  EXPECT_LT(std::abs(errorOf(r, target, source).z()), 0.01);
+}
+
+// A square room seen from its centre, turned 45 deg: turned -45 deg, the scan fits as well.
+TEST(Decision, ARivalThatScoresAsWellIsAmbiguous) {
+  simulation::World square;
+  square.addPolygon({{-3, -3}, {3, -3}, {3, 3}, {-3, 3}});
+  const Eigen::Isometry2d target = test::pose2d(0, 0, 0);
+
+  const RegistrationResult turned = registerPair(square, target, test::pose2d(0, 0, 45));
+  EXPECT_FALSE(turned.converged);
+  EXPECT_EQ(turned.status, RegistrationStatus::kAmbiguous) << turned.reason;
+  EXPECT_TRUE(turned.transform.isIdentity());
+
+  // Turned 30 deg, the rival (-60 deg) leaves a sixth of the contour unpaired: no tie.
+  const Eigen::Isometry2d less = test::pose2d(0, 0, 30);
+  const RegistrationResult decided = registerPair(square, target, less);
+  ASSERT_TRUE(decided.converged) << decided.reason;
+  EXPECT_LT(errorOf(decided, target, less).norm(), 0.01);
+}
+
+// The square turned 30 deg: two corners, the refinement pairs 89 % of the contour.
+TEST(Decision, TwoCornersStandOnlyWithALargeOverlap) {
+  simulation::World square;
+  square.addPolygon({{-3, -3}, {3, -3}, {3, 3}, {-3, 3}});
+  const Eigen::Isometry2d target = test::pose2d(0, 0, 0), source = test::pose2d(0, 0, 30);
+
+  const RegistrationResult two = registerPair(square, target, source, withoutContourHypotheses());
+  ASSERT_TRUE(two.converged) << two.reason;
+  EXPECT_FALSE(two.from_local_fallback);
+
+  RegistrationParams strict = withoutContourHypotheses();
+  strict.two_inlier_min_overlap = 0.95;
+  const RegistrationResult declined = registerPair(square, target, source, strict);
+  EXPECT_FALSE(declined.converged);
+  EXPECT_EQ(declined.status, RegistrationStatus::kTooFewInliers) << declined.reason;
+  EXPECT_NE(declined.reason.find("overlap only 8"), std::string::npos) << declined.reason;
+}
+
+TEST(Decision, InliersCloserThanTheirMinimumSpreadAreDegenerate) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  RegistrationParams params = withoutContourHypotheses();
+  params.min_inlier_spread = 100.0;  // m, more than any two corners of the room lie apart
+  const RegistrationResult r = registerPair(room, test::pose2d(0, 0, 10), test::pose2d(0.3, 0.1, 12), params);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.status, RegistrationStatus::kDegenerate) << r.reason;
+}
+
+// The corridor and the circle, whose direction stays free, are in registration_test.cc.
+
+}  // namespace
+}  // namespace contour_reg
