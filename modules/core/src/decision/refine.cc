@@ -46,7 +46,7 @@ const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &sou
     for (const Screened &s : screened) {
       if (chosen.size() == kRefinedInFull) break;
       if (std::none_of(chosen.begin(), chosen.end(),
-                       [&](const Screened *c) { return motionDistance(c->motion, s.motion) < 0.1; }))
+                       [&](const Screened *c) { return motionDistance(c->motion, s.motion) < kDistinctMotions / 2; }))
         chosen.push_back(&s);
     }
     std::vector<RefinementStart> kept;
