@@ -1,7 +1,14 @@
 #include "cli_options.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/registration.h"
 
 namespace contour_reg::cli {
 
@@ -14,6 +21,56 @@ void printReadReport(const io::ScanLog &log) {
                  log.report.reordered);
 }
 
+CLI::Validator inRange(double low, double high, bool open_low) {
+  auto text = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return std::string(buffer);
+  };
+  const std::string range = std::isinf(high) ? (open_low ? "> " : ">= ") + text(low)
+                                             : (open_low ? "(" : "[") + text(low) + ", " + text(high) + "]";
+  return CLI::Validator(
+      [=](std::string &value) -> std::string {
+        double v = 0.0;
+        try {
+          std::size_t used = 0;
+          v = std::stod(value, &used);
+          if (used != value.size()) throw std::invalid_argument(value);
+        } catch (const std::exception &) {
+          return "'" + value + "' is not a number";
+        }
+        if (!(open_low ? v > low : v >= low) || !(v <= high)) return value + " is out of range: must be " + range;
+        return {};
+      },
+      range);
+}
+
+void validateMethodOptions(const MethodOptions &options) {
+  const odometry::MatcherSettings settings = options.settings();
+  std::string why;
+  if (!settings.contour.validate(&why) || !settings.registration.validate(&why))
+    throw CLI::ValidationError("contour settings", why);
+}
+
+void checkOutputFile(const std::string &option, const std::string &path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::is_directory(path, error)) throw CLI::ValidationError(option, path + ": is a folder, not a file");
+  const fs::path folder = fs::path(path).parent_path();
+  if (!folder.empty() && !fs::is_directory(folder, error))
+    throw CLI::ValidationError(option, path + ": folder " + folder.string() + " does not exist");
+}
+
+void prepareOutputFolder(const std::string &option, const std::string &path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(path, error) && !fs::is_directory(path, error))
+    throw CLI::ValidationError(option, path + ": exists and is not a folder");
+  fs::create_directories(path, error);
+  if (!fs::is_directory(path, error))
+    throw CLI::ValidationError(option, path + ": cannot create the folder (" + error.message() + ")");
+}
+
 }  // namespace contour_reg::cli
 
 #include <unistd.h>
@@ -22,8 +79,11 @@ namespace contour_reg::cli {
 
 ProgressBar::ProgressBar(std::string label) : label_(std::move(label)), enabled_(isatty(STDERR_FILENO) != 0) {}
 
-ProgressBar::~ProgressBar() {
+ProgressBar::~ProgressBar() { finish(); }
+
+void ProgressBar::finish() {
   if (enabled_ && shown_ >= 0) std::fprintf(stderr, "\n");
+  shown_ = -1;
 }
 
 void ProgressBar::operator()(std::size_t done, std::size_t total) {

@@ -2,6 +2,7 @@
 // Options several subcommands share: how to read a scan source, and the settings of the
 // registration methods.
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -14,9 +15,19 @@
 
 namespace contour_reg::cli {
 
+/// A check that the value is a number in [low, high] (or (low, high] when `open_low`), with
+/// a message that names the bounds as the help text writes them.
+CLI::Validator inRange(double low, double high, bool open_low = false);
+/// Numbers > 0.
+inline CLI::Validator positive() { return inRange(0.0, std::numeric_limits<double>::infinity(), true); }
+/// Numbers >= 0.
+inline CLI::Validator nonNegative() { return inRange(0.0, std::numeric_limits<double>::infinity()); }
+
 /// --max-range, --scan-topic, --odom-topic.
 inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
-  command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m)")->capture_default_str();
+  command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m, > 0)")
+      ->capture_default_str()
+      ->check(positive());
   command.add_option("--scan-topic", options.scan_topic, "Bags: sensor_msgs/LaserScan topic (default: the first)");
   command.add_option("--odom-topic", options.odometry_topic, "Bags: nav_msgs/Odometry topic (default: the first)");
 }
@@ -45,26 +56,54 @@ struct MethodOptions {
 };
 
 inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
-  command.add_option("--contour-step", options.contour_step, "Contour: equalized element length (m)")
-      ->capture_default_str();
-  command.add_option("--threshold", options.threshold, "Contour: corner response threshold")->capture_default_str();
-  command.add_option("--candidates", options.candidates, "Contour: candidate targets per special point")
-      ->capture_default_str();
-  command.add_option("--arm", options.arm_elements, "Contour: elements per corner arm")->capture_default_str();
+  const CLI::Validator fraction = inRange(0.0, 1.0);
+  command.add_option("--contour-step", options.contour_step, "Contour: equalized element length (m, > 0)")
+      ->capture_default_str()
+      ->check(positive());
+  command.add_option("--threshold", options.threshold, "Contour: corner response threshold (0-1]")
+      ->capture_default_str()
+      ->check(inRange(0.0, 1.0, true));
+  command.add_option("--candidates", options.candidates, "Contour: candidate targets per special point (>= 1)")
+      ->capture_default_str()
+      ->check(inRange(1, 1000));
+  command.add_option("--arm", options.arm_elements, "Contour: elements per corner arm (>= 1)")
+      ->capture_default_str()
+      ->check(inRange(1, 1000));
   command
       .add_option("--local-fallback", options.local_fallback,
-                  "Contour: min contour overlap to accept the refined guess when corners cannot decide (0: off)")
-      ->capture_default_str();
+                  "Contour: min contour overlap to accept the refined guess when corners cannot decide (0-1, 0: off)")
+      ->capture_default_str()
+      ->check(fraction);
   command
       .add_option("--probe-distance", options.probe_distance,
                   "Contour: a motion of the local fallback or of few corners must settle back when refined from this "
                   "far off along its weakest direction (m, 0: no check)")
-      ->capture_default_str();
-  command.add_option("--icp-max-distance", options.icp_max_correspondence, "ICP/GICP: max correspondence distance (m)")
-      ->capture_default_str();
-  command.add_option("--ndt-resolution", options.ndt_resolution, "NDT/NDT2D: cell size (m)")->capture_default_str();
-  command.add_option("--iterations", options.iterations, "ICP/GICP/NDT: max iterations")->capture_default_str();
+      ->capture_default_str()
+      ->check(nonNegative());
+  command
+      .add_option("--icp-max-distance", options.icp_max_correspondence,
+                  "ICP/GICP: max correspondence distance (m, > 0)")
+      ->capture_default_str()
+      ->check(positive());
+  command.add_option("--ndt-resolution", options.ndt_resolution, "NDT/NDT2D: cell size (m, >= 0.05)")
+      ->capture_default_str()
+      ->check(inRange(0.05, 1000.0));
+  command.add_option("--iterations", options.iterations, "ICP/GICP/NDT: max iterations (>= 1)")
+      ->capture_default_str()
+      ->check(inRange(1, 100000));
 }
+
+/// Whether the library accepts the settings `options` make (option checks catch most values
+/// first); otherwise a validation error naming what is wrong.
+void validateMethodOptions(const MethodOptions &options);
+
+/// Checks before any work that `path` can be written as a file: its folder exists and it is
+/// not a folder. Otherwise a validation error naming `option` and the path.
+void checkOutputFile(const std::string &option, const std::string &path);
+
+/// Creates the folder `path` (and its parents) before any work; a validation error naming
+/// `option` and the path when it cannot (a file of that name exists, no permission).
+void prepareOutputFolder(const std::string &option, const std::string &path);
 
 /// --guess: where each registration's initial guess comes from.
 inline void addGuessOption(CLI::App &command, std::string &guess) {
@@ -96,6 +135,8 @@ class ProgressBar {
   explicit ProgressBar(std::string label);
   ~ProgressBar();
   void operator()(std::size_t done, std::size_t total);
+  /// Ends the bar's line (when one was drawn); the next call starts a new bar.
+  void finish();
 
  private:
   std::string label_;

@@ -3,7 +3,9 @@
 // runs when chosen; the run functions return the process exit code.
 
 #include <cstdio>
+#include <filesystem>
 #include <functional>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
@@ -11,15 +13,24 @@
 
 namespace contour_reg::cli {
 
-/// Runs a subcommand body: a non-zero exit code or an unreadable file ends the program
-/// with that code (2 for files), the error printed once.
+/// Runs a subcommand body: a non-zero exit code ends the program with that code; an
+/// unreadable file, a filesystem error (it names the path) or exhausted memory with 2, the
+/// error printed once.
 inline void runCommand(const std::function<int()> &body) {
+  int code = 0;
   try {
-    if (const int code = body(); code != 0) throw CLI::RuntimeError(code);
+    code = body();
   } catch (const io::ReadError &error) {
     std::fprintf(stderr, "error: %s\n", error.what());
-    throw CLI::RuntimeError(2);
+    code = 2;
+  } catch (const std::filesystem::filesystem_error &error) {
+    std::fprintf(stderr, "error: %s\n", error.what());
+    code = 2;
+  } catch (const std::bad_alloc &) {
+    std::fprintf(stderr, "error: out of memory (are the settings in range?)\n");
+    code = 2;
   }
+  if (code != 0) throw CLI::RuntimeError(code);
 }
 
 void addFeaturesCommand(CLI::App &app);

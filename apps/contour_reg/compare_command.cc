@@ -166,13 +166,25 @@ int runCompare(const CompareOptions &options) {
   std::vector<Row> rows(jobs.size());
   std::atomic<std::size_t> next{0};
   std::mutex print;
-  odometry::OdometryOptions run_options;
-  run_options.guess = guessSource(options.guess);
-  run_options.keyframes = options.keyframes;
+  // Progress over the scans of every job together.
+  std::size_t all_scans = 0;
+  for (const Job &job : jobs) all_scans += inputs[job.input].log.entries.size();
+  std::atomic<std::size_t> scans_done{0};
+  ProgressBar progress("compare");
   auto worker = [&]() {
     for (std::size_t j = next++; j < jobs.size(); j = next++) {
       const Input &input = inputs[jobs[j].input];
       auto matcher = odometry::makeScanMatcher(jobs[j].method, options.method_options.settings());
+      odometry::OdometryOptions run_options;
+      run_options.guess = guessSource(options.guess);
+      run_options.keyframes = options.keyframes;
+      std::size_t counted = 0;  // of this job's scans
+      run_options.progress = [&](std::size_t done, std::size_t) {
+        const std::size_t now = scans_done += done - counted;
+        counted = done;
+        std::lock_guard<std::mutex> lock(print);
+        progress(now, all_scans);
+      };
       const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
       io::writeTum((fs::path(options.out) / (input.name + "." + jobs[j].method + ".tum")).string(), run.trajectory);
       Row &row = rows[j];
@@ -186,8 +198,6 @@ int runCompare(const CompareOptions &options) {
       row.evaluation = evaluation::evaluate(run.trajectory, input.ground_truth ? &*input.ground_truth : nullptr,
                                             input.relations ? &*input.relations : nullptr, options.local_dt);
       row.trajectory = run.trajectory;
-      std::lock_guard<std::mutex> lock(print);
-      std::fprintf(stderr, "  done: %s / %s (%zu failed)\n", input.name.c_str(), jobs[j].method.c_str(), row.failures);
     }
   };
   const unsigned threads =
@@ -196,6 +206,22 @@ int runCompare(const CompareOptions &options) {
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread &t : pool) t.join();
+  progress.finish();
+  // A reference that covers nothing gives "-" cells; say why.
+  for (const Input &input : inputs) {
+    const Row *any = nullptr;
+    for (const Row &row : rows)
+      if (row.input == input.name) any = &row;
+    if (!any) continue;
+    const evaluation::Evaluation &e = any->evaluation;
+    if (input.ground_truth && !e.end_point)
+      std::fprintf(stderr,
+                   "warning: %s: the ground truth shares %zu stamps with the estimate: no ground-truth metric\n",
+                   input.name.c_str(), e.matched_poses);
+    if (input.relations && !e.relations_local)
+      std::fprintf(stderr, "warning: %s: the estimate covers none of the %zu relations: no relation metric\n",
+                   input.name.c_str(), input.relations->size());
+  }
 
   // The log's own wheel odometry, where it has it, as a baseline row.
   for (const Input &input : inputs) {
@@ -230,21 +256,32 @@ void addCompareCommand(CLI::App &app) {
   auto options = std::make_shared<CompareOptions>();
   CLI::App *command =
       app.add_subcommand("compare", "Run several methods on the same scans: one table of accuracy and speed");
-  command->add_option("inputs", options->inputs, "CARMEN logs, ROS bags or PCD folders")->required();
+  command->add_option("inputs", options->inputs, "CARMEN logs, ROS bags or PCD folders")
+      ->required()
+      ->check(CLI::ExistingPath);
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
-  command->add_option("--gt", options->ground_truths,
-                      "Ground truth TUM per input, in order (default: INPUT_STEM.gt.tum beside the input)");
-  command->add_option("--relations", options->relations,
-                      "Relations file per input, in order (default: INPUT_STEM.relations beside the input)");
+  command
+      ->add_option("--gt", options->ground_truths,
+                   "Ground truth TUM per input, in order (default: INPUT_STEM.gt.tum beside the input)")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--relations", options->relations,
+                   "Relations file per input, in order (default: INPUT_STEM.relations beside the input)")
+      ->check(CLI::ExistingFile);
   command->add_option("--out", options->out, "Output folder")->required();
   addGuessOption(*command, options->guess);
   command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
   command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");
   command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive());
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
-  command->callback([options]() { runCommand([&] { return runCompare(*options); }); });
+  command->callback([options]() {
+    validateMethodOptions(options->method_options);
+    prepareOutputFolder("--out", options->out);
+    runCommand([&] { return runCompare(*options); });
+  });
 }
 
 }  // namespace contour_reg::cli

@@ -29,12 +29,11 @@ int runDebug(const DebugOptions &options) {
   printReadReport(log);
   const int count = static_cast<int>(log.entries.size());
   const int target = options.to >= 0 ? options.to : options.scan - 1;
-  if (options.scan < 0 || options.scan >= count || target < 0 || target >= count) {
-    std::fprintf(stderr, "error: scans %d and %d: %s has scans 0..%d\n", options.scan, target, options.input.c_str(),
+  if (options.scan >= count || target >= count) {
+    std::fprintf(stderr, "error: --scan %d, --to %d: %s has scans 0..%d\n", options.scan, target, options.input.c_str(),
                  count - 1);
     return 2;
   }
-  std::filesystem::create_directories(options.out);
   const odometry::MatcherSettings settings = options.method_options.settings();
   DebugDumper dumper(options.out, settings);
   for (const std::string &file : dumper.dumpPair(log, std::size_t(target), std::size_t(options.scan), options.methods))
@@ -47,15 +46,25 @@ int runDebug(const DebugOptions &options) {
 void addDebugCommand(CLI::App &app) {
   auto options = std::make_shared<DebugOptions>();
   CLI::App *command = app.add_subcommand("debug", "Debug images of a scan and of its registration to another scan");
-  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")->required();
-  command->add_option("--scan", options->scan, "Scan to draw (the source of the pair)")->capture_default_str();
-  command->add_option("--to", options->to, "Target scan of the pair (default: the scan before)");
+  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
+      ->required()
+      ->check(CLI::ExistingPath);
+  command->add_option("--scan", options->scan, "Scan to draw (the source of the pair; index in stamp order)")
+      ->capture_default_str()
+      ->check(nonNegative());
+  command->add_option("--to", options->to, "Target scan of the pair (default: the scan before)")->check(nonNegative());
   command->add_option("--out", options->out, "Output folder")->required();
   command->add_option("--methods", options->methods, "Also draw these methods' alignments side by side")
       ->check(methodCheck());
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
-  command->callback([options]() { runCommand([&] { return runDebug(*options); }); });
+  command->callback([options]() {
+    if (options->scan == 0 && options->to < 0)
+      throw CLI::ValidationError("--scan", "scan 0 has no scan before it: give --to");
+    validateMethodOptions(options->method_options);
+    prepareOutputFolder("--out", options->out);
+    runCommand([&] { return runDebug(*options); });
+  });
 }
 
 }  // namespace contour_reg::cli

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "cli_options.h"
 #include "commands.h"
 #include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/trajectory.h"
@@ -26,23 +27,40 @@ int runEvaluate(const EvaluateOptions &options) {
                            options.relations.empty() ? nullptr : &relations, options.local_dt);
   std::printf("%s: %zu poses, path %.2f m\n", options.trajectory.c_str(), estimate.size(),
               evaluation::pathLength(estimate));
-  if (e.end_point) {
-    std::printf("end-point error: %.3f m over %.2f m of ground-truth path = %.2f %%\n", e.end_point->error,
-                e.end_point->path_length, e.end_point->percent);
-    std::printf("drift over 10 m windows: %.2f %% (%zu windows)\n", e.drift->mean_percent, e.drift->windows);
-    std::printf("ATE after SE(2) alignment: %.3f m RMSE\n", *e.ate);
+  int code = 0;
+  if (!options.ground_truth.empty()) {
+    if (e.end_point) {
+      std::printf("ground truth: %zu of %zu poses matched by stamp\n", e.matched_poses, e.estimate_poses);
+      std::printf("end-point error: %.3f m over %.2f m of ground-truth path = %.2f %%\n", e.end_point->error,
+                  e.end_point->path_length, e.end_point->percent);
+      std::printf("drift over 10 m windows: %.2f %% (%zu windows)\n", e.drift->mean_percent, e.drift->windows);
+      std::printf("ATE after SE(2) alignment: %.3f m RMSE\n", *e.ate);
+    } else {
+      std::fprintf(stderr,
+                   "error: %s and %s share %zu stamps (within 1 s); need 2: is it the ground truth of this run?\n",
+                   options.trajectory.c_str(), options.ground_truth.c_str(), e.matched_poses);
+      code = 1;
+    }
   }
-  auto print_relations = [](const char *label, const evaluation::RelationErrors &r) {
-    std::printf("relations %s: %zu (%zu not covered), translation %.4f +- %.4f m, rotation %.3f +- %.3f deg\n", label,
-                r.count, r.missing, r.translation_mean, r.translation_std, r.rotation_mean, r.rotation_std);
-  };
   if (e.relations_all) {
-    print_relations("all", *e.relations_all);
-    char label[32];
-    std::snprintf(label, sizeof label, "local (<= %.0f s)", options.local_dt);
-    print_relations(label, *e.relations_local);
+    const evaluation::RelationErrors &all = *e.relations_all;
+    if (e.relations_local) {
+      auto print_relations = [](const char *label, const evaluation::RelationErrors &r) {
+        std::printf("relations %s: %zu of %zu used, translation %.4f +- %.4f m, rotation %.3f +- %.3f deg\n", label,
+                    r.count, r.count + r.missing, r.translation_mean, r.translation_std, r.rotation_mean,
+                    r.rotation_std);
+      };
+      print_relations("all", all);
+      char label[32];
+      std::snprintf(label, sizeof label, "local (<= %.0f s)", options.local_dt);
+      print_relations(label, *e.relations_local);
+    } else {
+      std::fprintf(stderr, "error: %s covers none of the %zu relations of %s: is it the log they belong to?\n",
+                   options.trajectory.c_str(), all.missing, options.relations.c_str());
+      code = 1;
+    }
   }
-  return 0;
+  return code;
 }
 
 }  // namespace
@@ -57,7 +75,8 @@ void addEvaluateCommand(CLI::App &app) {
   auto *rel = command->add_option("--relations", options->relations, "Kuemmerle et al. relations file")
                   ->check(CLI::ExistingFile);
   command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive());
   command->callback([options, gt, rel]() {
     if (gt->count() == 0 && rel->count() == 0) throw CLI::ValidationError("evaluate", "give --gt or --relations");
     runCommand([&] { return runEvaluate(*options); });

@@ -164,6 +164,7 @@ int runExperiment(const ExperimentOptions &options) {
   const std::string description = describe(options, scenario, settings);
   std::fprintf(stderr, "%s\n", description.c_str());
   const auto results = experiment::runExperiment(scenario.world, scenario.paths, settings);
+  progress.finish();
 
   // Trajectories of the first arrival of every path and rate.
   std::map<std::pair<std::string, double>, std::map<std::string, io::Trajectory>> estimates;
@@ -190,17 +191,21 @@ void addExperimentCommand(CLI::App &app) {
       "experiment", "The paper's experiment: paths x LIDAR rates x arrivals, each method on the same simulated scans");
   command->add_option("--out", options->out, "Output folder")->required();
   command->add_option("--paths", options->paths, "Path shapes (or names in --paths-file)")->capture_default_str();
-  command->add_option("--rates", options->rates, "LIDAR rates (Hz)")->capture_default_str()->check(CLI::PositiveNumber);
+  command->add_option("--rates", options->rates, "LIDAR rates (Hz)")->capture_default_str()->check(positive());
   command->add_option("--arrivals", options->arrivals, "Runs per path and rate, each with its own seed")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of the first arrival")->capture_default_str();
   command->add_option("--jobs,-j", options->jobs, "Parallel arrivals (default: one per core)");
   addGuessOption(*command, options->guess);
   addScenarioOptions(*command, options->scenario);
   addMethodOptions(*command, options->method_options);
-  command->callback([options]() { runCommand([&] { return runExperiment(*options); }); });
+  command->callback([options]() {
+    validateMethodOptions(options->method_options);
+    prepareOutputFolder("--out", options->out);
+    runCommand([&] { return runExperiment(*options); });
+  });
 }
 
 }  // namespace contour_reg::cli

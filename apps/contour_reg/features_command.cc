@@ -3,9 +3,10 @@
 #include <cstdio>
 #include <memory>
 
+#include "cli_options.h"
 #include "commands.h"
 #include "contour_reg/core/contour_features.h"
-#include "contour_reg/io/carmen.h"
+#include "contour_reg/io/read_log.h"
 
 namespace contour_reg::cli {
 
@@ -15,23 +16,21 @@ struct FeaturesOptions {
   std::string input;
   int scan = 0;
   bool all = false;
-  double max_range = 40.0;
+  io::LogReadOptions read;
+  MethodOptions method_options;
 };
 
 int runFeatures(const FeaturesOptions &options) {
-  io::CarmenOptions carmen;
-  carmen.max_range = options.max_range;
-  const io::ScanLog log = io::readCarmen(options.input, carmen);
-  for (const std::string &problem : log.report.problems) std::fprintf(stderr, "warning: %s\n", problem.c_str());
+  const io::ScanLog log = io::readLog(options.input, options.read);
+  printReadReport(log);
   const int count = static_cast<int>(log.entries.size());
-  if (!options.all && (options.scan < 0 || options.scan >= count)) {
-    std::fprintf(stderr, "error: --scan %d is out of range: %s has %d scans\n", options.scan, options.input.c_str(),
-                 count);
+  if (!options.all && options.scan >= count) {
+    std::fprintf(stderr, "error: --scan %d: %s has scans 0..%d\n", options.scan, options.input.c_str(), count - 1);
     return 2;
   }
   const int first = options.all ? 0 : options.scan, last = options.all ? count - 1 : options.scan;
   std::printf("# scan stamp index x y corner_angle_deg orientation_deg response turn\n");
-  const ContourParams params;
+  const ContourParams params = options.method_options.settings().contour;
   for (int k = first; k <= last; ++k) {
     const LaserScan &scan = log.entries[k].scan;
     const ContourFeatures features = extractContourFeatures(scan, params);
@@ -51,14 +50,19 @@ int runFeatures(const FeaturesOptions &options) {
 void addFeaturesCommand(CLI::App &app) {
   auto options = std::make_shared<FeaturesOptions>();
   CLI::App *command = app.add_subcommand("features", "Print the special points (corners) of scans of a log");
-  command->add_option("input", options->input, "CARMEN log (.clf/.log, plain or .gz)")
+  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
       ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--scan", options->scan, "Index of the scan, in stamp order")->capture_default_str();
+      ->check(CLI::ExistingPath);
+  command->add_option("--scan", options->scan, "Index of the scan, in stamp order")
+      ->capture_default_str()
+      ->check(nonNegative());
   command->add_flag("--all", options->all, "Every scan of the log");
-  command->add_option("--max-range", options->max_range, "Readings at or above are no-return (m)")
-      ->capture_default_str();
-  command->callback([options]() { runCommand([&] { return runFeatures(*options); }); });
+  addReadOptions(*command, options->read);
+  addMethodOptions(*command, options->method_options);
+  command->callback([options]() {
+    validateMethodOptions(options->method_options);
+    runCommand([&] { return runFeatures(*options); });
+  });
 }
 
 }  // namespace contour_reg::cli

@@ -41,7 +41,6 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   // Debug images: every N-th pair and every failed registration.
   std::unique_ptr<DebugDumper> dumper;
   if (!options.debug_dir.empty()) {
-    std::filesystem::create_directories(options.debug_dir);
     dumper = std::make_unique<DebugDumper>(options.debug_dir, options.methods.settings());
     run_options.on_match = [&](std::size_t reference, std::size_t k, const odometry::MatchResult &match) {
       if (!match.converged || (options.debug_every > 0 && k % options.debug_every == 0))
@@ -49,6 +48,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
     };
   }
   const odometry::OdometryRun run = odometry::runOdometry(log, *matcher, run_options);
+  progress.finish();
   io::writeTum(options.output, run.trajectory);
   std::printf("%s: %zu scans, %zu registrations by %s, %zu failed (%zu degenerate), median %.3f ms, p95 %.3f ms\n",
               options.input.c_str(), log.entries.size(), run.stats.registrations, options.method.c_str(),
@@ -65,7 +65,9 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
 void addOdometryCommand(CLI::App &app) {
   auto options = std::make_shared<OdometryCommandOptions>();
   CLI::App *command = app.add_subcommand("odometry", "Laser odometry: chain scan registrations into a TUM trajectory");
-  command->add_option("input", options->input, "CARMEN log, ROS bag (.bag) or folder of PCD scans")->required();
+  command->add_option("input", options->input, "CARMEN log, ROS bag (.bag) or folder of PCD scans")
+      ->required()
+      ->check(CLI::ExistingPath);
   command->add_option("--method,-m", options->method, "Registration method")
       ->check(methodCheck())
       ->capture_default_str();
@@ -74,16 +76,23 @@ void addOdometryCommand(CLI::App &app) {
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
   command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(nonNegative());
   command->add_option("--keyframe-angle", options->keyframe_angle_deg, "New keyframe after this turn (deg)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(nonNegative());
   command->add_option("--debug-dir", options->debug_dir, "Write debug images of failed registrations here");
   command
       ->add_option("--debug-every", options->debug_every, "With --debug-dir, also every N-th pair (0: failures only)")
       ->capture_default_str();
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->methods);
-  command->callback([options]() { runCommand([&] { return runOdometryCommand(*options); }); });
+  command->callback([options]() {
+    validateMethodOptions(options->methods);
+    checkOutputFile("--output", options->output);
+    if (!options->debug_dir.empty()) prepareOutputFolder("--debug-dir", options->debug_dir);
+    runCommand([&] { return runOdometryCommand(*options); });
+  });
 }
 
 }  // namespace contour_reg::cli

@@ -86,19 +86,23 @@ int runRelations(const RelationsOptions &options) {
     csv = std::fopen(options.pairs_csv.c_str(), "w");
     if (!csv) throw std::runtime_error("cannot write " + options.pairs_csv);
     std::fprintf(csv,
-                 "method,first,second,t1,t2,dx,dy,dyaw,x,y,yaw,converged,recovered,error_m,error_deg,ms,status,reason,"
-                 "cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw\n");
+                 "method,first,second,t1_s,t2_s,ref_x_m,ref_y_m,ref_yaw_rad,est_x_m,est_y_m,est_yaw_rad,converged,"
+                 "recovered,error_m,error_deg,ms,status,reason,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw\n");
   }
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
+  std::fflush(stdout);
+  std::vector<std::string> failures;  // printed after the table
   for (const std::string &name : options.methods) {
     auto matcher = odometry::makeScanMatcher(name, options.method_options.settings());
     std::map<std::string, int> reasons;
+    ProgressBar progress(name);
     std::size_t recovered = 0, converged = 0, wrong = 0;
     double error_sum = 0.0;
     std::vector<double> ms;
     for (const ScanPair &pair : pairs) {
+      progress(ms.size(), pairs.size());
       const io::Relation &r = pair.reference;
       const odometry::MatchResult match = matcher->match(log.entries[pair.first].scan, log.entries[pair.second].scan);
       ms.push_back(match.milliseconds);
@@ -125,15 +129,17 @@ int runRelations(const RelationsOptions &options) {
         error_sum += et;
       }
     }
+    progress.finish();
     const double n = std::max<double>(1.0, pairs.size());
     std::printf("| %s | %.1f %% | %.1f %% | %.1f %% | %.3f | %.3f | %.3f |\n", name.c_str(), 100 * recovered / n,
                 100 * converged / n, 100 * wrong / n, recovered ? error_sum / recovered : 0.0, percentile(ms, 0.5),
                 percentile(ms, 0.95));
     for (const auto &[reason, count] : reasons)
-      std::fprintf(stderr, "  %s failed: %s: %d\n", name.c_str(), reason.c_str(), count);
+      failures.push_back(name + " failed: " + reason + ": " + std::to_string(count));
     std::fflush(stdout);
   }
   if (csv) std::fclose(csv);
+  for (const std::string &line : failures) std::fprintf(stderr, "%s\n", line.c_str());
   return 0;
 }
 
@@ -142,7 +148,9 @@ int runRelations(const RelationsOptions &options) {
 void addRelationsCommand(CLI::App &app) {
   auto options = std::make_shared<RelationsOptions>();
   CLI::App *command = app.add_subcommand("relations", "Register the scan pairs of a relations file from a zero guess");
-  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")->required();
+  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
+      ->required()
+      ->check(CLI::ExistingPath);
   auto *relations = command->add_option("--relations", options->relations, "Kuemmerle et al. relations file")
                         ->check(CLI::ExistingFile);
   auto *gap = command->add_option("--log-poses", options->log_pose_gap,
@@ -151,13 +159,18 @@ void addRelationsCommand(CLI::App &app) {
   relations->excludes(gap);
   gap->excludes(relations);
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
-  command->add_option("--max-dt", options->max_dt, "Only relations at most this far apart (s)")->capture_default_str();
+  command->add_option("--max-dt", options->max_dt, "Only relations at most this far apart (s)")
+      ->capture_default_str()
+      ->check(positive());
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
   command->callback([options, relations, gap]() {
     if (relations->count() == 0 && gap->count() == 0) throw CLI::RequiredError("--relations or --log-poses");
+    if (gap->count() > 0 && options->log_pose_gap == 0) throw CLI::ValidationError("--log-poses", "must be >= 1");
+    validateMethodOptions(options->method_options);
+    if (!options->pairs_csv.empty()) checkOutputFile("--pairs-csv", options->pairs_csv);
     runCommand([&] { return runRelations(*options); });
   });
 }

@@ -5,6 +5,7 @@
 #include <memory>
 #include <sstream>
 
+#include "cli_options.h"
 #include "contour_reg/io/scan_log.h"
 #include "contour_reg/simulation/office.h"
 #include "contour_reg/simulation/paths.h"
@@ -40,21 +41,29 @@ std::map<std::string, std::vector<Eigen::Vector2d>> readPathsFile(const std::str
 void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
   command
       .add_option("--map", options.map, "office (built in) or a map: map_server YAML, or a PGM/PNG with --resolution")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string &map) -> std::string {
+            return map == "office" || std::filesystem::exists(map) ? "" : map + ": no such file";
+          },
+          "office or FILE"));
   command.add_option("--resolution", options.resolution, "Metres per pixel of a map image given without YAML")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  command.add_option("--paths-file", options.paths_file,
-                     "Paths in map metres, one per line: NAME x0 y0 x1 y1 ... (default: S, L, Y, O placed in the map)");
+      ->check(positive());
+  command
+      .add_option("--paths-file", options.paths_file,
+                  "Paths in map metres, one per line: NAME x0 y0 x1 y1 ... (default: S, L, Y, O placed in the map)")
+      ->check(CLI::ExistingFile);
   command.add_option("--lidar", options.lidar, "hokuyo (UTM-30LX-like) or ydlidar (X4-like)")
       ->check(CLI::IsMember({"hokuyo", "ydlidar"}))
       ->capture_default_str();
   command.add_option("--motion", options.motion, "stop-and-go (scans at rest) or continuous (distorted scans)")
       ->check(CLI::IsMember({"stop-and-go", "continuous"}))
       ->capture_default_str();
-  command.add_option("--speed", options.speed, "Robot speed (m/s)")->capture_default_str()->check(CLI::PositiveNumber);
-  command.add_option("--odometry-noise", options.odometry_noise, "Relative wheel odometry noise")
-      ->capture_default_str();
+  command.add_option("--speed", options.speed, "Robot speed (m/s)")->capture_default_str()->check(positive());
+  command.add_option("--odometry-noise", options.odometry_noise, "Relative wheel odometry noise (>= 0)")
+      ->capture_default_str()
+      ->check(nonNegative());
 }
 
 Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::string> &names) {

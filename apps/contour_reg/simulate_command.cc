@@ -1,7 +1,9 @@
 // contour_reg simulate: a CARMEN log and TUM ground truth of a path through a world.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
+#include "cli_options.h"
 #include "commands.h"
 #include "contour_reg/io/carmen.h"
 #include "contour_reg/io/trajectory.h"
@@ -24,10 +26,11 @@ int runSimulate(const SimulateOptions &options) {
   const simulation::RunSettings settings = runSettings(options.scenario, options.rate, options.seed);
   const simulation::SimulatedRun run = simulation::simulateRun(scenario.world, waypoints, settings);
   io::writeCarmen(options.output, run.log);
-  if (!options.ground_truth.empty()) io::writeTum(options.ground_truth, run.ground_truth);
+  io::writeTum(options.ground_truth, run.ground_truth);
   std::fprintf(stderr, "simulated %zu scans along path %s (%.1f m) in %s with %s, %s\n", run.log.entries.size(),
                options.path.c_str(), run.path_length, scenario.map_name.c_str(), settings.lidar.name.c_str(),
                options.scenario.motion.c_str());
+  std::fprintf(stderr, "written: %s, ground truth %s\n", options.output.c_str(), options.ground_truth.c_str());
   return 0;
 }
 
@@ -36,16 +39,26 @@ int runSimulate(const SimulateOptions &options) {
 void addSimulateCommand(CLI::App &app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App *command = app.add_subcommand("simulate", "Simulate a LIDAR log along a path through a map");
-  command->add_option("--out", options->output, "CARMEN log to write")->required();
-  command->add_option("--gt", options->ground_truth, "TUM ground truth to write");
+  command->add_option("--out", options->output, "CARMEN log to write (a file)")->required();
+  command->add_option("--gt", options->ground_truth,
+                      "TUM ground truth to write (default: OUT_STEM.gt.tum beside the log, where compare finds it)");
   command->add_option("--path", options->path, "S, L, Y, O, line (office) or a name in --paths-file")
       ->capture_default_str();
   command->add_option("--rate", options->rate, "LIDAR rate (Hz): sets the spacing between scans")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   command->add_option("--seed", options->seed, "Random seed")->capture_default_str();
   addScenarioOptions(*command, options->scenario);
-  command->callback([options]() { runCommand([&] { return runSimulate(*options); }); });
+  command->callback([options]() {
+    checkOutputFile("--out", options->output);
+    if (options->ground_truth.empty()) {
+      std::filesystem::path gt(options->output);
+      while (gt.extension() == ".gz" || gt.extension() == ".clf" || gt.extension() == ".log") gt.replace_extension();
+      options->ground_truth = gt.string() + ".gt.tum";
+    }
+    checkOutputFile("--gt", options->ground_truth);
+    runCommand([&] { return runSimulate(*options); });
+  });
 }
 
 }  // namespace contour_reg::cli

@@ -162,15 +162,19 @@ RelationErrors relationErrors(const io::Trajectory &estimate, const std::vector<
 Evaluation evaluate(const io::Trajectory &estimate, const io::Trajectory *ground_truth,
                     const std::vector<io::Relation> *relations, double local_dt) {
   Evaluation result;
+  result.estimate_poses = estimate.size();
   if (ground_truth) {
     const Association association = associate(estimate, *ground_truth);
-    result.end_point = endPointError(association);
-    result.drift = drift(association);
-    result.ate = absoluteTrajectoryError(association);
+    result.matched_poses = association.stamps.size();
+    if (result.matched_poses >= 2) {
+      result.end_point = endPointError(association);
+      result.drift = drift(association);
+      result.ate = absoluteTrajectoryError(association);
+    }
   }
   if (relations) {
-    result.relations_all = relationErrors(estimate, *relations);
-    result.relations_local = relationErrors(estimate, *relations, local_dt);
+    result.relations_all = relationErrors(estimate, *relations);  // with none covered: how many were not
+    if (result.relations_all->count > 0) result.relations_local = relationErrors(estimate, *relations, local_dt);
   }
   return result;
 }

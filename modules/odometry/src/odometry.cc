@@ -86,7 +86,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       pose = compose(poses[reference], toPose(match.transform));
     } else {
       ++run.stats.failures;
-      run.stats.degenerate += match.degenerate;
+      run.stats.degenerate += match.status == "degenerate";
       ++run.stats.failure_reasons[match.status];
       run.stats.failed_scans.push_back(k);
       pose = (options.guess == GuessSource::kOdometry && wheel) ? compose(previous, *wheel) : by_velocity;

@@ -65,8 +65,13 @@ RelationErrors relationErrors(const io::Trajectory &estimate, const std::vector<
                               double max_dt = std::numeric_limits<double>::infinity());
 
 /// Every metric the references allow: against ground truth (end point, drift, ATE) and
-/// against relations (all of them, and the local ones with |t2 - t1| <= local_dt).
+/// against relations (all of them, and the local ones with |t2 - t1| <= local_dt). A
+/// reference that covers too little gives no metric rather than a zero: the ground-truth
+/// metrics need two estimated poses with a ground-truth pose, the relation means one
+/// relation whose stamps the estimate covers (relations_all then says only how many it missed).
 struct Evaluation {
+  std::size_t estimate_poses = 0;  ///< poses in the estimate
+  std::size_t matched_poses = 0;   ///< of them, with a ground-truth pose (0 without ground truth)
   std::optional<EndPointError> end_point;
   std::optional<Drift> drift;
   std::optional<double> ate;

@@ -43,7 +43,7 @@ struct OdometryOptions {
 struct OdometryStats {
   std::size_t registrations = 0;
   std::size_t failures = 0;            ///< not converged (degenerate ones included)
-  std::size_t degenerate = 0;          ///< of the failures, those the method flagged degenerate
+  std::size_t degenerate = 0;          ///< of the failures, those whose status is "degenerate"
   std::size_t recovered_by_retry = 0;  ///< registrations that failed from the guess and converged on the retry
   std::vector<double> milliseconds;    ///< per registration
   std::map<std::string, std::size_t> failure_reasons;  ///< MatchResult::status -> count

@@ -1,0 +1,112 @@
+# The contour_reg tool on bad command lines and references that cover nothing: every case
+# exits with the documented code, names the option or the path, and writes nothing.
+set(LOG ${SOURCE_DIR}/data/office/L-hokuyo-2hz.clf)
+set(GT ${SOURCE_DIR}/data/office/L-hokuyo-2hz.gt.tum)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+function(expect_run code)
+  execute_process(COMMAND ${TOOL} ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL code)
+    message(FATAL_ERROR "contour_reg ${ARGN}: exit ${result}, expected ${code}\n${out}\n${err}")
+  endif()
+  set(LAST_OUT "${out}" PARENT_SCOPE)
+  set(LAST_ERR "${err}" PARENT_SCOPE)
+endfunction()
+
+function(expect_match text pattern)
+  if(NOT text MATCHES "${pattern}")
+    message(FATAL_ERROR "expected /${pattern}/ in:\n${text}")
+  endif()
+endfunction()
+
+# Nothing may appear in the work folder but what a case writes on purpose.
+function(expect_nothing_written)
+  file(GLOB written ${WORK_DIR}/out/*)
+  if(written)
+    message(FATAL_ERROR "a refused command wrote ${written}")
+  endif()
+endfunction()
+file(MAKE_DIRECTORY ${WORK_DIR}/out)
+set(OUT ${WORK_DIR}/out)
+
+# --version and a mistyped command.
+file(STRINGS ${SOURCE_DIR}/CMakeLists.txt project_line REGEX "^project\\(contour_reg VERSION")
+string(REGEX MATCH "[0-9]+\\.[0-9]+\\.[0-9]+" version "${project_line}")
+expect_run(0 --version)
+expect_match("${LAST_OUT}" "contour_reg ${version}")
+expect_run(2 odometri ${LOG})
+expect_match("${LAST_ERR}" "unknown command 'odometri'; did you mean 'odometry'")
+expect_run(2 odometry ${LOG} --method nonsense --output ${OUT}/t.tum)
+expect_match("${LAST_ERR}" "--method")
+
+# Every invalid value exits 2 before any work, naming the option.
+foreach(case "--arm;0" "--threshold;-1" "--contour-step;0" "--candidates;0" "--local-fallback;40" "--max-range;-5"
+             "--icp-max-distance;-1" "--iterations;0" "--ndt-resolution;0" "--probe-distance;-1" "--threshold;abc")
+  list(GET case 0 option)
+  expect_run(2 odometry ${LOG} -m ndt2d --output ${OUT}/t.tum ${case})
+  expect_match("${LAST_ERR}" "${option}")
+  expect_nothing_written()
+endforeach()
+expect_run(2 debug ${LOG} --threshold -1 --out ${OUT}/pictures)
+expect_match("${LAST_ERR}" "--threshold")
+expect_run(2 experiment --odometry-noise -1 --out ${OUT}/experiment)
+expect_match("${LAST_ERR}" "--odometry-noise")
+expect_run(2 experiment --rates 0 --out ${OUT}/experiment)
+expect_match("${LAST_ERR}" "--rates: 0 is out of range: must be > 0")
+expect_nothing_written()
+
+# Outputs are checked before any work: a file where a folder goes, a folder that does not exist.
+file(WRITE ${WORK_DIR}/a_file "")
+expect_run(2 debug ${LOG} --scan 30 --out ${WORK_DIR}/a_file)
+expect_match("${LAST_ERR}" "a_file: exists and is not a folder")
+expect_run(2 odometry ${LOG} --output ${OUT}/t.tum --debug-dir ${WORK_DIR}/a_file)
+expect_match("${LAST_ERR}" "a_file: exists and is not a folder")
+expect_run(2 odometry ${LOG} -m icp --output ${WORK_DIR}/missing/dir/t.tum)
+expect_match("${LAST_ERR}" "--output: .*missing/dir/t.tum: folder .* does not exist")
+expect_run(2 debug ${LOG} --scan 0 --out ${OUT}/pictures)
+expect_match("${LAST_ERR}" "scan 0 has no scan before it")
+expect_nothing_written()
+
+# A missing input is found before an output folder is made.
+expect_run(2 compare ${WORK_DIR}/missing.clf --out ${OUT}/compare)
+expect_match("${LAST_ERR}" "missing.clf")
+expect_run(2 experiment --map ${WORK_DIR}/missing.yaml --out ${OUT}/experiment)
+expect_match("${LAST_ERR}" "missing.yaml")
+expect_nothing_written()
+
+# evaluate refuses to score a ground truth of another run, or relations it does not cover.
+file(STRINGS ${GT} gt_lines REGEX "^[0-9]")
+set(shifted "")
+foreach(line IN LISTS gt_lines)
+  string(REGEX REPLACE "^([0-9]+)" "9\\1" line "${line}")  # the same poses, stamps far later
+  string(APPEND shifted "${line}\n")
+endforeach()
+file(WRITE ${WORK_DIR}/other.gt.tum "${shifted}")
+expect_run(1 evaluate ${GT} --gt ${WORK_DIR}/other.gt.tum)
+expect_match("${LAST_ERR}" "share 0 stamps")
+file(WRITE ${WORK_DIR}/other.relations "1000001.0 1000002.0 0.5 0 0 0 0 0\n1000003.0 1000004.0 0.5 0 0 0 0 0\n")
+expect_run(1 evaluate ${GT} --relations ${WORK_DIR}/other.relations)
+expect_match("${LAST_ERR}" "covers none of the 2 relations")
+expect_run(0 evaluate ${GT} --gt ${GT})
+expect_match("${LAST_OUT}" "ground truth: 99 of 99 poses matched")
+
+# simulate writes its ground truth where compare finds it.
+expect_run(2 simulate --path line --rate 2 --out ${WORK_DIR}/nowhere/s.clf)
+expect_match("${LAST_ERR}" "--out: .*nowhere/s.clf: folder")
+file(MAKE_DIRECTORY ${WORK_DIR}/sim)
+expect_run(0 simulate --path line --rate 2 --out ${WORK_DIR}/sim/s.clf)
+expect_run(0 compare ${WORK_DIR}/sim/s.clf --methods contour --out ${WORK_DIR}/sim/compare)
+expect_match("${LAST_ERR}" "s.clf: [0-9]+ scans, ground truth")
+expect_match("${LAST_OUT}" "\\| s \\| contour \\| [0-9]+ / [0-9]+ \\| - \\| - \\| - \\| [0-9.]+ \\|")
+
+# features reads every input kind: a ROS bag when the shared datasets are there.
+set(BAG ${SOURCE_DIR}/../shared/datasets/intel/intel.orig.bag)
+if(EXISTS ${BAG})
+  expect_run(0 features ${BAG} --scan 5)
+  expect_match("${LAST_ERR}" "scan 5: 180 beams")
+endif()
+expect_run(0 features ${LOG} --scan 10 --threshold 0.1 --arm 6)
+expect_run(2 features ${LOG} --scan 10 --arm 0)
+expect_match("${LAST_ERR}" "--arm")
+message(STATUS "cli errors: all checks passed")
