@@ -241,8 +241,10 @@ int runCompare(const CompareOptions &options) {
     std::map<std::string, io::Trajectory> estimates;
     for (const Row &row : rows)
       if (row.input == input.name && row.method != kWheelOdometry) estimates[row.method] = row.trajectory;
+    const std::string title = input.name + ": " + std::to_string(input.log.entries.size()) + " scans, guess " +
+                              options.guess + (options.keyframes ? ", keyframes" : ", scan to scan");
     drawing::writeImage((fs::path(options.out) / (input.name + ".trajectories.png")).string(),
-                        drawing::drawTrajectories(estimates, *input.ground_truth));
+                        drawing::drawTrajectories(estimates, *input.ground_truth, 1200, title));
   }
   std::printf("guess: %s; %s; %u parallel jobs; ms = registration only\n\n", options.guess.c_str(),
               options.keyframes ? "keyframes" : "scan to scan", threads);

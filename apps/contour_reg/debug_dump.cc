@@ -29,7 +29,7 @@ std::vector<std::string> DebugDumper::dumpPair(const io::ScanLog &log, std::size
     for (const std::string &method : methods) {
       auto matcher = odometry::makeScanMatcher(method, settings_);
       const odometry::MatchResult match = matcher->match(a, b);
-      alignments.push_back({method, match.transform, match.converged});
+      alignments.push_back({method, match.transform, match.converged, match.reason});
     }
     written.push_back((fs::path(folder_) / ("methods_" + stem + ".png")).string());
     drawing::writeImage(written.back(), drawing::drawAlignments(a, b, alignments));

@@ -176,8 +176,11 @@ int runExperiment(const ExperimentOptions &options) {
   }
   for (const auto &[key, by_method] : estimates) {
     const std::string name = key.first + "-" + rateName(key.second) + "hz.png";
+    const std::string title = "path " + key.first + " at " + rateName(key.second) + " Hz, map " + scenario.map_name +
+                              ", " + settings.run.lidar.name + ", first arrival (seed " + std::to_string(options.seed) +
+                              ")";
     drawing::writeImage((fs::path(options.out) / "trajectories" / name).string(),
-                        drawing::drawTrajectories(by_method, truths[key]));
+                        drawing::drawTrajectories(by_method, truths[key], 1200, title));
   }
   writeTables(options, description, results);
   return 0;

@@ -71,10 +71,15 @@ TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
   EXPECT_EQ(pair.cols, 1600);
   EXPECT_GT(countColour(pair, Palette::inlier()), 20);
   EXPECT_GT(countColour(pair, Palette::source()), 500);
-  const cv::Mat sides =
-      drawAlignments(a, b, {{"contour", result.transform, true}, {"none", Eigen::Matrix3d::Identity(), false}}, 500);
+  const cv::Mat sides = drawAlignments(
+      a, b, {{"contour", result.transform, true, ""}, {"none", Eigen::Matrix3d::Identity(), false, "too few inliers"}},
+      500);
   EXPECT_EQ(sides.cols, 1000);
-  EXPECT_EQ(sides.rows, 500);
+  const int band = sides.rows - 500;  // the words above the panels
+  ASSERT_GT(band, 0);
+  // The failure and its reason are written in the band, not over the scans.
+  EXPECT_GT(countColour(sides(cv::Rect(500, 0, 500, band)), Palette::warning()), 100);
+  EXPECT_EQ(countColour(sides(cv::Rect(0, band, 1000, 500)), Palette::warning()), 0);
 }
 
 // A corridor with a door recess every 3 m, closed 9 m ahead: one door back, the walls still
@@ -102,6 +107,11 @@ TEST(DebugImages, TrajectoriesAreDrawnOverGroundTruth) {
   const cv::Mat image = drawTrajectories({{"contour", estimate}}, truth, 900);
   EXPECT_EQ(image.cols, 900);
   EXPECT_GT(countColour(image, {0, 0, 0}), 300);
+  // A method keeps its colour whatever else is drawn beside it.
+  const cv::Mat both = drawTrajectories({{"contour", estimate}, {"icp", truth}}, truth, 900, "title");
+  EXPECT_GT(countColour(both, Palette::method("contour")), 300);
+  EXPECT_GT(countColour(both, Palette::method("icp")), 300);
+  EXPECT_NE(Palette::method("contour"), Palette::method("icp"));
 }
 
 }  // namespace

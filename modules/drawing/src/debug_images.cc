@@ -21,7 +21,7 @@ constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 // Distinct colours for contour segments (no red: red marks special points).
 cv::Scalar segmentColour(std::size_t k) {
   static const cv::Scalar colours[] = {{180, 119, 31},  {44, 160, 44},  {189, 103, 148}, {75, 86, 140},
-                                       {194, 119, 227}, {34, 189, 188}, {207, 190, 23},  {127, 127, 127}};
+                                       {194, 119, 227}, {34, 189, 188}, {207, 190, 23},  {14, 127, 255}};
   return colours[k % 8];
 }
 
@@ -38,8 +38,8 @@ void text(cv::Mat &image, const std::string &s, cv::Point at, double size = 0.6,
   cv::putText(image, s, at, kFont, size, colour, warning ? 2 : 1, warning ? cv::LINE_8 : cv::LINE_AA);
 }
 
-// A scale bar of a round length in the lower-right corner, and the sensor at the origin.
-void decorate(cv::Mat &image, const View &view) {
+// A scale bar of a round length in the lower-right corner, and (with `sensor`) the sensor at the origin.
+void decorate(cv::Mat &image, const View &view, bool sensor = true) {
   const double metres_wanted = 150.0 / view.scale;
   double bar = 1.0;
   for (double candidate : {0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0})
@@ -50,8 +50,7 @@ void decorate(cv::Mat &image, const View &view) {
   char label[32];
   std::snprintf(label, sizeof label, "%g m", bar);
   text(image, label, end - cv::Point(length, 10));
-  const cv::Point sensor = view.pixel({0, 0});
-  cv::drawMarker(image, sensor, kBlack, cv::MARKER_TRIANGLE_UP, 14, 2);
+  if (sensor) cv::drawMarker(image, view.pixel({0, 0}), kBlack, cv::MARKER_TRIANGLE_UP, 14, 2);
 }
 
 void drawPoints(cv::Mat &image, const View &view, const std::vector<Eigen::Vector2d> &points, cv::Scalar colour,
@@ -138,7 +137,8 @@ cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const C
           {"contour segment (one colour each)", segmentColour(0)},
           {"equalized vertex", kBlack},
           {"special point (corner arms)", Palette::specialPoint()}},
-         {15, panel_height - 100});
+         {15, panel_height - 122});
+  text(panel, "triangle: the sensor", {15, panel_height - 122 + 4 * 22}, 0.55);
 
   // The strip: response c(n) of every contour, one after another, separated by ticks.
   cv::Mat strip = image(cv::Rect(0, panel_height, width, strip_height));
@@ -174,54 +174,73 @@ cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const C
   return image;
 }
 
+// Writes `reason` wrapped at about `columns` characters, at most `rows` lines, from `at` down.
+void wrapped(cv::Mat &image, std::string reason, cv::Point at, std::size_t columns, int rows, cv::Scalar colour) {
+  for (int row = 0; !reason.empty() && row < rows; ++row) {
+    std::size_t cut = reason.size();
+    if (reason.size() > columns) {
+      cut = reason.rfind(' ', columns);
+      if (cut == std::string::npos || cut == 0) cut = columns;
+    }
+    text(image, reason.substr(0, cut), at + cv::Point(0, 22 * row), 0.5, colour);
+    reason = cut < reason.size() ? reason.substr(cut + 1) : std::string();
+  }
+}
+
 cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const ContourFeatures &target_features,
                  const ContourFeatures &source_features, const RegistrationResult &result, const std::string &title,
                  int width) {
-  const int panel = width / 2, height = panel;
-  cv::Mat image(height, width, CV_8UC3, kWhite);
+  // A band on top for the words, two panels below for the data.
+  const int panel = width / 2, height = panel, band = 150;
+  cv::Mat image(band + height, width, CV_8UC3, kWhite);
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
   const auto target_points = finitePoints(target, identity), source_points = finitePoints(source, identity);
   std::vector<Eigen::Vector2d> all = target_points;
   all.insert(all.end(), source_points.begin(), source_points.end());
   const View view = View::fit(all, panel, height);
+  cv::Mat top_left = image(cv::Rect(0, 0, panel, band)), top_right = image(cv::Rect(panel, 0, panel, band));
+  cv::line(image, {0, band}, {width, band}, kBlack, 1);
 
   // Left: both scans in their own sensor frames, pairs between their special points.
-  cv::Mat left = image(cv::Rect(0, 0, panel, height));
+  cv::Mat left = image(cv::Rect(0, band, panel, height));
   drawPoints(left, view, target_points, Palette::target());
   drawPoints(left, view, source_points, Palette::source());
-  std::vector<bool> is_inlier(result.candidates.size(), false);
-  for (int i : result.inliers) is_inlier[std::size_t(i)] = true;
-  for (std::size_t k = 0; k < result.candidates.size(); ++k) {
-    const Correspondence &c = result.candidates[k];
-    const auto from = static_cast<std::size_t>(c.source), to = static_cast<std::size_t>(c.target);
-    if (c.source < 0 || c.target < 0 || from >= source_features.special_points.size() ||
-        to >= target_features.special_points.size())
-      continue;
-    const cv::Scalar colour =
-        is_inlier[k] ? Palette::inlier() : (result.inliers.empty() ? Palette::candidate() : Palette::outlier());
-    cv::line(left, view.pixel(source_features.special_points[from].position),
-             view.pixel(target_features.special_points[to].position), colour, is_inlier[k] ? 2 : 1, cv::LINE_AA);
-  }
   for (const SpecialPoint &p : target_features.special_points)
     drawSpecialPoint(left, view, p, identity, Palette::target());
   for (const SpecialPoint &p : source_features.special_points)
     drawSpecialPoint(left, view, p, identity, Palette::source());
+  std::vector<bool> is_inlier(result.candidates.size(), false);
+  for (int i : result.inliers) is_inlier[std::size_t(i)] = true;
+  for (int inliers_last = 0; inliers_last < 2; ++inliers_last)  // inlier pairs on top of the others
+    for (std::size_t k = 0; k < result.candidates.size(); ++k) {
+      const Correspondence &c = result.candidates[k];
+      const auto from = static_cast<std::size_t>(c.source), to = static_cast<std::size_t>(c.target);
+      if (is_inlier[k] != (inliers_last == 1) || c.source < 0 || c.target < 0 ||
+          from >= source_features.special_points.size() || to >= target_features.special_points.size())
+        continue;
+      const cv::Scalar colour =
+          is_inlier[k] ? Palette::inlier() : (result.inliers.empty() ? Palette::candidate() : Palette::outlier());
+      cv::line(left, view.pixel(source_features.special_points[from].position),
+               view.pixel(target_features.special_points[to].position), colour, is_inlier[k] ? 3 : 1, cv::LINE_AA);
+    }
   decorate(left, view);
-  text(left, title, {15, 30}, 0.7);
+  text(top_left, title, {15, 28}, 0.7);
   char counts[200];
   std::snprintf(counts, sizeof counts, "special points: %zu target, %zu source; %zu candidate pairs, %zu inliers",
                 result.target_points, result.source_points, result.candidates.size(), result.inliers.size());
-  text(left, counts, {15, 56}, 0.5);
-  legend(left,
-         {{"target scan", Palette::target()},
-          {"source scan", Palette::source()},
+  text(top_left, counts, {15, 54}, 0.5);
+  legend(top_left,
+         {{"target scan (sensor frame)", Palette::target()},
+          {"source scan (sensor frame)", Palette::source()},
           {"RANSAC inlier pair", Palette::inlier()},
           {"outlier pair", Palette::outlier()}},
-         {15, height - 90});
+         {15, 80});
+  text(top_left, "(grey lines: candidate pairs, no motion found)", {300, 102}, 0.45);
+  text(top_left, "triangle: the sensor; bar: scale", {300, 124}, 0.45);
 
   // Right: the source moved by the result.
-  cv::Mat right = image(cv::Rect(panel, 0, panel, height));
-  cv::line(right, {0, 0}, {0, height}, kBlack, 1);
+  cv::Mat right = image(cv::Rect(panel, band, panel, height));
+  cv::line(image, {panel, 0}, {panel, band + height}, kBlack, 1);
   const auto moved = finitePoints(source, result.transform);
   const View overlay = View::fit(target_points, panel, height);
   drawPoints(right, overlay, target_points, Palette::target(), 2);
@@ -234,36 +253,42 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
                               result.transform, FreeSpaceParams{}, &contradicted);
   drawPoints(right, overlay, contradicted, Palette::freeSpace(), 3);
   decorate(right, overlay);
-  char evidence[160];
-  std::snprintf(evidence, sizeof evidence, "in the other scan's free space: %.1f m of contour (%.0f %%)",
-                evidence_against.contradicted_length, 100.0 * evidence_against.fraction());
-  text(right, evidence, {15, height - 40}, 0.5, contradicted.empty() ? kBlack : Palette::freeSpace());
   const io::Pose2D pose = io::toPose(result.transform);
   char line[200];
   if (result.converged) {
     std::snprintf(line, sizeof line, "converged: x %.3f m, y %.3f m, yaw %.2f deg; contour rmse %.3f m%s", pose.x,
                   pose.y, pose.yaw * 180 / M_PI, result.contour_rmse, result.degenerate ? ", DEGENERATE" : "");
-    text(right, line, {15, 30}, 0.55);
+    text(top_right, line, {15, 28}, 0.55);
   } else {
-    text(right, "NOT CONVERGED:", {15, 30}, 0.6, Palette::warning());
-    std::string reason = result.reason;
-    for (int row = 0; !reason.empty() && row < 4; ++row) {  // wrap the reason
-      const std::size_t cut = reason.size() > 70 ? reason.rfind(' ', 70) : reason.size();
-      text(right, reason.substr(0, cut), {15, 56 + 24 * row}, 0.5, Palette::warning());
-      reason = cut < reason.size() ? reason.substr(cut + 1) : std::string();
-    }
+    text(top_right, std::string("NOT CONVERGED (") + toString(result.status) + "):", {15, 28}, 0.6, Palette::warning());
+    wrapped(top_right, result.reason, {15, 52}, 75, 3, Palette::warning());
   }
+  char evidence[160];
+  std::snprintf(evidence, sizeof evidence, "magenta: %.1f m of contour (%.0f %%) in the other scan's free space",
+                evidence_against.contradicted_length, 100.0 * evidence_against.fraction());
+  text(top_right, evidence, {15, 122}, 0.5, contradicted.empty() ? kBlack : Palette::freeSpace());
+  legend(right, {{"target scan", Palette::target()}, {"source moved by the result", Palette::source()}},
+         {15, height - 50});
   return image;
 }
 
 cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const std::vector<Alignment> &alignments,
                        int panel_width) {
-  const int n = std::max<int>(1, static_cast<int>(alignments.size()));
-  cv::Mat image(panel_width, panel_width * n, CV_8UC3, kWhite);
+  const int n = std::max<int>(1, static_cast<int>(alignments.size())), band = 110;
+  cv::Mat image(band + panel_width, panel_width * n, CV_8UC3, kWhite);
   const auto target_points = finitePoints(target, Eigen::Matrix3d::Identity());
-  const View view = View::fit(target_points, panel_width, panel_width);
+  // The view shows the target and every converged alignment of the source in full.
+  std::vector<Eigen::Vector2d> shown = target_points;
+  for (const Alignment &a : alignments)
+    if (a.converged) {
+      const auto moved = finitePoints(source, a.transform);
+      shown.insert(shown.end(), moved.begin(), moved.end());
+    }
+  const View view = View::fit(shown, panel_width, panel_width);
+  cv::line(image, {0, band}, {panel_width * n, band}, kBlack, 1);
   for (int k = 0; k < static_cast<int>(alignments.size()); ++k) {
-    cv::Mat panel = image(cv::Rect(k * panel_width, 0, panel_width, panel_width));
+    cv::Mat top = image(cv::Rect(k * panel_width, 0, panel_width, band));
+    cv::Mat panel = image(cv::Rect(k * panel_width, band, panel_width, panel_width));
     const Alignment &a = alignments[std::size_t(k)];
     drawPoints(panel, view, target_points, Palette::target(), 2);
     drawPoints(panel, view, finitePoints(source, a.transform), Palette::source(), 1);
@@ -271,18 +296,34 @@ cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const s
     const io::Pose2D pose = io::toPose(a.transform);
     char line[160];
     std::snprintf(line, sizeof line, "%s: %s", a.method.c_str(), a.converged ? "converged" : "NOT CONVERGED");
-    text(panel, line, {12, 28}, 0.65, a.converged ? kBlack : Palette::warning());
-    std::snprintf(line, sizeof line, "x %.3f  y %.3f  yaw %.2f deg", pose.x, pose.y, pose.yaw * 180 / M_PI);
-    text(panel, line, {12, 52}, 0.5);
-    if (k > 0) cv::line(panel, {0, 0}, {0, panel_width}, kBlack, 1);
+    text(top, line, {12, 26}, 0.65, a.converged ? kBlack : Palette::warning());
+    std::snprintf(line, sizeof line, "x %.3f m, y %.3f m, yaw %.2f deg", pose.x, pose.y, pose.yaw * 180 / M_PI);
+    text(top, line, {12, 50}, 0.5);
+    if (!a.converged) wrapped(top, a.reason, {12, 72}, 60, 2, Palette::warning());
+    if (k > 0) cv::line(image, {k * panel_width, 0}, {k * panel_width, band + panel_width}, kBlack, 1);
+    legend(panel, {{"target scan", Palette::target()}, {"source moved by " + a.method, Palette::source()}},
+           {12, panel_width - 50});
   }
   return image;
 }
 
+cv::Scalar Palette::method(const std::string &name) {
+  if (name == "contour") return {200, 120, 20};     // blue
+  if (name == "contour+icp") return {0, 140, 255};  // orange
+  if (name == "icp") return {40, 170, 40};          // green
+  if (name == "ndt2d") return {180, 80, 150};       // purple
+  if (name == "ndt") return {40, 80, 140};          // brown
+  if (name == "gicp") return {190, 120, 240};       // pink
+  if (name == "wheel-odometry") return {150, 150, 150};
+  return {40, 140, 140};  // olive
+}
+
 cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates, const io::Trajectory &ground_truth,
-                         int width) {
+                         int width, const std::string &title) {
+  const int title_height = title.empty() ? 0 : 40;
   const int map_height = width * 2 / 3, plot_height = width / 4;
-  cv::Mat image(map_height + plot_height, width, CV_8UC3, kWhite);
+  cv::Mat image(title_height + map_height + plot_height, width, CV_8UC3, kWhite);
+  if (!title.empty()) text(image, title, {15, 28}, 0.75);
   // Everything re-anchored at the ground truth's first pose.
   const io::Pose2D anchor = ground_truth.empty() ? io::Pose2D{} : ground_truth.front().pose;
   std::map<std::string, std::vector<Eigen::Vector2d>> paths;
@@ -299,28 +340,32 @@ cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates,
   for (const io::StampedPose &p : ground_truth) truth.push_back({p.pose.x, p.pose.y});
   all.insert(all.end(), truth.begin(), truth.end());
   const View view = View::fit(all, width, map_height);
-  cv::Mat map = image(cv::Rect(0, 0, width, map_height));
+  cv::Mat map = image(cv::Rect(0, title_height, width, map_height));
   auto polyline = [&](const std::vector<Eigen::Vector2d> &path, cv::Scalar colour, int thickness) {
     for (std::size_t k = 1; k < path.size(); ++k)
       cv::line(map, view.pixel(path[k - 1]), view.pixel(path[k]), colour, thickness, cv::LINE_AA);
   };
-  polyline(truth, kBlack, 3);
-  std::vector<std::pair<std::string, cv::Scalar>> entries{{"ground truth", kBlack}};
-  std::size_t index = 0;
+  std::vector<std::pair<std::string, cv::Scalar>> entries;
+  int thickness = 2 + 2 * static_cast<int>(paths.size());
   for (const auto &[name, path] : paths) {
-    polyline(path, segmentColour(index), 2);
-    entries.push_back({name, segmentColour(index++)});
+    thickness -= 2;
+    polyline(path, Palette::method(name), thickness + 1);
+    entries.push_back({name, Palette::method(name)});
   }
-  decorate(map, view);
+  polyline(truth, kBlack, 1);
+  entries.push_back({"ground truth", kBlack});
+  if (!truth.empty()) cv::drawMarker(map, view.pixel(truth.front()), kBlack, cv::MARKER_TRIANGLE_UP, 16, 2);
+  decorate(map, view, false);
   legend(map, entries, {15, 30});
+  text(map, "triangle: start, where every trajectory is anchored", {15, 30 + 22 * static_cast<int>(entries.size())},
+       0.5);
 
-  // Position error along the distance travelled (ground truth's), per method.
-  cv::Mat plot = image(cv::Rect(0, map_height, width, plot_height));
+  // Position error along the distance travelled (ground truth's), per method, log scale.
+  cv::Mat plot = image(cv::Rect(0, title_height + map_height, width, plot_height));
   cv::line(plot, {0, 0}, {width, 0}, kBlack, 1);
-  text(plot, "position error (m) along the distance travelled (m)", {50, 18}, 0.55);
+  text(plot, "position error (m, log scale) along the distance travelled (m)", {70, 18}, 0.55);
   std::map<std::string, std::vector<std::pair<double, double>>> errors;
   double max_error = 0.01, max_distance = 1.0;
-  index = 0;
   for (const auto &[name, trajectory] : estimates) {
     if (trajectory.empty() || ground_truth.empty()) continue;
     double travelled = 0.0;
@@ -338,18 +383,29 @@ cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates,
       max_distance = std::max(max_distance, travelled);
     }
   }
-  const int left = 50, right = width - 20, top = 28, bottom = plot_height - 22;
+  const int left = 70, right = width - 20, top = 28, bottom = plot_height - 26;
+  const double low = 1e-3, high = std::pow(10.0, std::ceil(std::log10(max_error)));  // m
+  auto y_of = [&](double e) {
+    const double f = (std::log10(std::max(e, low)) - std::log10(low)) / (std::log10(high) - std::log10(low));
+    return bottom - static_cast<int>(f * (bottom - top));
+  };
   char label[32];
-  std::snprintf(label, sizeof label, "%.2f", max_error);
-  text(plot, label, {2, top + 5}, 0.45);
-  std::snprintf(label, sizeof label, "%.0f", max_distance);
-  text(plot, label, {right - 30, plot_height - 4}, 0.45);
+  for (double tick = low; tick <= high * 1.01; tick *= 10.0) {
+    const int y = y_of(tick);
+    cv::line(plot, {left, y}, {right, y}, {225, 225, 225}, 1);
+    std::snprintf(label, sizeof label, "%g", tick);
+    text(plot, label, {4, y + 5}, 0.45);
+  }
+  cv::line(plot, {left, top}, {left, bottom}, kBlack, 1);
+  cv::line(plot, {left, bottom}, {right, bottom}, kBlack, 1);
+  text(plot, "0", {left - 4, plot_height - 6}, 0.45);
+  std::snprintf(label, sizeof label, "%.0f m", max_distance);
+  text(plot, label, {right - 50, plot_height - 6}, 0.45);
   for (const auto &[name, series] : errors) {
-    const cv::Scalar colour = segmentColour(index++);
+    const cv::Scalar colour = Palette::method(name);
     for (std::size_t k = 1; k < series.size(); ++k) {
       auto at = [&](const std::pair<double, double> &s) {
-        return cv::Point(left + int(s.first / max_distance * (right - left)),
-                         bottom - int(s.second / max_error * (bottom - top)));
+        return cv::Point(left + int(s.first / max_distance * (right - left)), y_of(s.second));
       };
       cv::line(plot, at(series[k - 1]), at(series[k]), colour, 2, cv::LINE_AA);
     }
@@ -407,7 +463,7 @@ cv::Mat drawWorld(const simulation::World &world, const std::map<std::string, st
     }
     entries.push_back({"path " + name, colour});
   }
-  decorate(image, view);
+  decorate(image, view, false);
   legend(image, entries, {15, 30});
   return image;
 }

@@ -31,6 +31,9 @@ struct Palette {
   static cv::Scalar candidate() { return {170, 170, 170}; }  ///< grey
   static cv::Scalar warning() { return {0, 0, 255}; }        ///< pure red text
   static cv::Scalar freeSpace() { return {200, 0, 200}; }    ///< magenta: contour in the other scan's free space
+  /// One colour per method, the same in every picture: contour blue, contour+icp orange, icp
+  /// green, ndt2d purple, ndt brown, gicp pink, wheel-odometry grey (others olive).
+  static cv::Scalar method(const std::string &name);
 };
 
 /// A metric-to-pixel map for a square-ish panel: y up, 1 m = `scale` px.
@@ -63,14 +66,19 @@ struct Alignment {
   std::string method;
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();
   bool converged = false;
+  std::string reason;  ///< why not, when not converged
 };
 cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const std::vector<Alignment> &alignments,
                        int panel_width = 600);
 
-/// Trajectories (name -> trajectory) over ground truth (black), each re-anchored at the
-/// ground truth's first pose; below, the position error along the distance travelled.
+/// Trajectories (method name -> trajectory, each in Palette::method's colour) under the
+/// ground truth (black, drawn last so that it stays visible), each re-anchored at the ground
+/// truth's first pose, which a triangle marks; methods drawn earlier are drawn wider, so one
+/// that follows another stays visible beside it. `title` (input, path, rate) heads the
+/// picture. Below, each method's position error along the distance travelled, on a
+/// logarithmic axis from 1 mm, so that methods a thousand times apart are all readable.
 cv::Mat drawTrajectories(const std::map<std::string, io::Trajectory> &estimates, const io::Trajectory &ground_truth,
-                         int width = 1200);
+                         int width = 1200, const std::string &title = "");
 
 /// A map (segments, circles, occupancy grid: obstacles black, unknown grey) with named
 /// paths drawn over it, each from a circle at its start to an arrow at its end.
