@@ -39,9 +39,10 @@ int runSimulate(const SimulateOptions &options) {
 void addSimulateCommand(CLI::App &app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App *command = app.add_subcommand("simulate", "Simulate a LIDAR log along a path through a map");
-  command->add_option("--out", options->output, "CARMEN log to write (a file)")->required();
+  command->add_option("--output,-o,--out", options->output, "CARMEN log to write (a file, as odometry's --output)")
+      ->required();
   command->add_option("--gt", options->ground_truth,
-                      "TUM ground truth to write (default: OUT_STEM.gt.tum beside the log, where compare finds it)");
+                      "TUM ground truth to write (default: OUTPUT_STEM.gt.tum beside the log, where compare finds it)");
   command->add_option("--path", options->path, "S, L, Y, O, line (office) or a name in --paths-file")
       ->capture_default_str();
   command->add_option("--rate", options->rate, "LIDAR rate (Hz): sets the spacing between scans")
@@ -50,7 +51,7 @@ void addSimulateCommand(CLI::App &app) {
   command->add_option("--seed", options->seed, "Random seed")->capture_default_str();
   addScenarioOptions(*command, options->scenario);
   command->callback([options]() {
-    checkOutputFile("--out", options->output);
+    checkOutputFile("--output", options->output);
     if (options->ground_truth.empty()) {
       std::filesystem::path gt(options->output);
       while (gt.extension() == ".gz" || gt.extension() == ".clf" || gt.extension() == ".log") gt.replace_extension();

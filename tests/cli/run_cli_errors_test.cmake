@@ -92,10 +92,10 @@ expect_run(0 evaluate ${GT} --gt ${GT})
 expect_match("${LAST_OUT}" "ground truth: 99 of 99 poses matched")
 
 # simulate writes its ground truth where compare finds it.
-expect_run(2 simulate --path line --rate 2 --out ${WORK_DIR}/nowhere/s.clf)
-expect_match("${LAST_ERR}" "--out: .*nowhere/s.clf: folder")
+expect_run(2 simulate --path line --rate 2 --output ${WORK_DIR}/nowhere/s.clf)
+expect_match("${LAST_ERR}" "--output: .*nowhere/s.clf: folder")
 file(MAKE_DIRECTORY ${WORK_DIR}/sim)
-expect_run(0 simulate --path line --rate 2 --out ${WORK_DIR}/sim/s.clf)
+expect_run(0 simulate --path line --rate 2 -o ${WORK_DIR}/sim/s.clf)
 expect_run(0 compare ${WORK_DIR}/sim/s.clf --methods contour --out ${WORK_DIR}/sim/compare)
 expect_match("${LAST_ERR}" "s.clf: [0-9]+ scans, ground truth")
 expect_match("${LAST_OUT}" "\\| s \\| contour \\| [0-9]+ / [0-9]+ \\| - \\| - \\| - \\| [0-9.]+ \\|")
