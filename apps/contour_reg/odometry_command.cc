@@ -19,12 +19,29 @@ namespace {
 struct OdometryCommandOptions {
   std::string input, output, method = "contour", guess = "zero";
   bool odom_guess = false, keyframes = false;
-  std::string debug_dir;
+  std::string debug_dir, covariance;
   std::size_t debug_every = 0;
   double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
   io::LogReadOptions read;
   MethodOptions methods;
 };
+
+// One row per registration: the motion as chained and its covariance (README, the command-line tool).
+void writeSteps(const std::string &path, const io::ScanLog &log, const odometry::OdometryRun &run) {
+  std::FILE *file = std::fopen(path.c_str(), "w");
+  if (!file) throw io::ReadError(path + ": cannot write");
+  std::fprintf(file,
+               "reference_stamp_s,stamp_s,converged,status,dx_m,dy_m,dyaw_rad,cov_xx_m2,cov_xy_m2,cov_xyaw_m_rad,"
+               "cov_yy_m2,cov_yyaw_m_rad,cov_yawyaw_rad2\n");
+  for (const odometry::OdometryStep &s : run.steps) {
+    const Eigen::Matrix3d &c = s.covariance;
+    std::fprintf(file, "%.6f,%.6f,%d,%s,%.6f,%.6f,%.7f,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n",
+                 log.entries[s.reference].scan.stamp, log.entries[s.scan].scan.stamp, s.converged ? 1 : 0,
+                 s.converged ? "converged" : s.status.c_str(), s.motion.x, s.motion.y, s.motion.yaw, c(0, 0), c(0, 1),
+                 c(0, 2), c(1, 1), c(1, 2), c(2, 2));
+  }
+  std::fclose(file);
+}
 
 int runOdometryCommand(const OdometryCommandOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
@@ -50,6 +67,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   const odometry::OdometryRun run = odometry::runOdometry(log, *matcher, run_options);
   progress.finish();
   io::writeTum(options.output, run.trajectory);
+  if (!options.covariance.empty()) writeSteps(options.covariance, log, run);
   std::printf("%s: %zu scans, %zu registrations by %s, %zu failed (%zu degenerate), median %.3f ms, p95 %.3f ms\n",
               options.input.c_str(), log.entries.size(), run.stats.registrations, options.method.c_str(),
               run.stats.failures, run.stats.degenerate, percentile(run.stats.milliseconds, 0.5),
@@ -82,6 +100,9 @@ void addOdometryCommand(CLI::App &app) {
       ->capture_default_str()
       ->check(nonNegative());
   command->add_option("--debug-dir", options->debug_dir, "Write debug images of failed registrations here");
+  command->add_option("--covariance", options->covariance,
+                      "Also write one CSV row per registration: the motion as chained and its covariance (x, y, "
+                      "yaw; zero for failures and methods without one)");
   command
       ->add_option("--debug-every", options->debug_every, "With --debug-dir, also every N-th pair (0: failures only)")
       ->capture_default_str();
@@ -90,6 +111,7 @@ void addOdometryCommand(CLI::App &app) {
   command->callback([options]() {
     validateMethodOptions(options->methods);
     checkOutputFile("--output", options->output);
+    if (!options->covariance.empty()) checkOutputFile("--covariance", options->covariance);
     if (!options->debug_dir.empty()) prepareOutputFolder("--debug-dir", options->debug_dir);
     runCommand([&] { return runOdometryCommand(*options); });
   });

@@ -25,7 +25,20 @@ foreach(command features simulate odometry evaluate compare relations debug)
 endforeach()
 
 # odometry writes one TUM line per scan.
-expect_run(0 odometry ${LOG} --method contour --output ${WORK_DIR}/contour.tum --debug-dir ${WORK_DIR}/debug --debug-every 10)
+expect_run(0 odometry ${LOG} --method contour --output ${WORK_DIR}/contour.tum --debug-dir ${WORK_DIR}/debug --debug-every 10
+           --covariance ${WORK_DIR}/steps.csv)
+# ... and one covariance row per registration, each converged with a positive variance.
+file(STRINGS ${WORK_DIR}/steps.csv rows REGEX ",1,converged,")
+list(LENGTH rows count)
+if(NOT count EQUAL 98)
+  message(FATAL_ERROR "odometry --covariance wrote ${count} converged rows, expected 98")
+endif()
+list(GET rows 0 first)
+string(REPLACE "," ";" fields "${first}")
+list(GET fields 7 variance_x)
+if(NOT variance_x MATCHES "^[1-9]\\.[0-9]+e-0[0-9]$")
+  message(FATAL_ERROR "odometry --covariance: variance of x '${variance_x}' is not a positive number")
+endif()
 file(STRINGS ${WORK_DIR}/contour.tum lines REGEX "^[0-9]")
 list(LENGTH lines count)
 if(NOT count EQUAL 99)

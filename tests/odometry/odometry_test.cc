@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <pcl/console/print.h>
+#include <Eigen/Cholesky>
 
 #include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"
@@ -42,6 +43,29 @@ TEST(Odometry, ContourOdometryFollowsTheTrueTrajectory) {
   const auto a = evaluation::associate(run.trajectory, s.truth);
   EXPECT_LT(evaluation::endPointError(a).error, 0.05);
   EXPECT_LT(evaluation::absoluteTrajectoryError(a), 0.03);
+}
+
+// Each step's motion and covariance, as a pose graph takes them: the motions chain to the
+// trajectory, and the true motion lies within the covariance's 99.9 % ellipsoid (with 1 cm /
+// 0.2 deg added for the scans' noise).
+TEST(Odometry, StepsCarryTheChainedMotionAndAnHonestCovariance) {
+  const Sequence s = roomSequence();
+  auto matcher = makeScanMatcher("contour");
+  const OdometryRun run = runOdometry(s.log, *matcher);
+  ASSERT_EQ(run.steps.size(), s.truth.size() - 1);
+  for (const OdometryStep &step : run.steps) {
+    ASSERT_TRUE(step.converged) << step.status;
+    EXPECT_EQ(step.scan, step.reference + 1);
+    const io::Pose2D chained = io::between(run.trajectory[step.reference].pose, run.trajectory[step.scan].pose);
+    EXPECT_NEAR(chained.x, step.motion.x, 1e-9);
+    EXPECT_EQ(step.covariance.llt().info(), Eigen::Success) << "step " << step.scan << ": no covariance";
+    const io::Pose2D truth = io::between(s.truth[step.reference].pose, s.truth[step.scan].pose);
+    const Eigen::Vector3d error(step.motion.x - truth.x, step.motion.y - truth.y,
+                                std::remainder(step.motion.yaw - truth.yaw, 2 * M_PI));
+    const Eigen::Matrix3d covariance =
+        step.covariance + Eigen::Vector3d(1e-4, 1e-4, std::pow(0.2 * M_PI / 180, 2)).asDiagonal().toDenseMatrix();
+    EXPECT_LT(error.dot(covariance.ldlt().solve(error)), 16.27) << "step " << step.scan;
+  }
 }
 
 TEST(Odometry, KeyframesGiveATrajectoryAsGood) {

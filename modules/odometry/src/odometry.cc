@@ -93,6 +93,9 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     }
     poses.push_back(pose);
     run.trajectory.push_back({entries[k].scan.stamp, pose});
+    run.steps.push_back({reference, k, match.converged, match.converged ? std::string() : match.status,
+                         between(poses[reference], pose),
+                         match.converged ? match.covariance : Eigen::Matrix3d::Zero()});
     velocity_motion = between(previous, pose);
     velocity_dt = dt;
 

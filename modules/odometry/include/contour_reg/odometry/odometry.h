@@ -50,8 +50,19 @@ struct OdometryStats {
   std::vector<std::size_t> failed_scans;               ///< scan indices whose registration failed
 };
 
+/// One registration of a run, as a pose-graph back end takes it: the motion from the
+/// reference scan to the scan and its covariance, or why there is none.
+struct OdometryStep {
+  std::size_t reference = 0, scan = 0;  ///< scan indices in the log
+  bool converged = false;
+  std::string status;                                    ///< "" when converged
+  io::Pose2D motion;                                     ///< reference to scan, as chained (bridged when failed)
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw; zero when the method gives none or failed
+};
+
 struct OdometryRun {
-  io::Trajectory trajectory;  ///< one pose per scan, the first at the origin
+  io::Trajectory trajectory;        ///< one pose per scan, the first at the origin
+  std::vector<OdometryStep> steps;  ///< one per registration, in order
   OdometryStats stats;
 };
 
