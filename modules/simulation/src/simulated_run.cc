@@ -46,6 +46,7 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
                                  settings.turn_radius);
           },
           lidar, rng);
+      entry.scan.time_increment = beam_time;
     }
     entry.scan.stamp = stamp;
     if (k > 0) {  // wheel odometry: the true increment with proportional noise

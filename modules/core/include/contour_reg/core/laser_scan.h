@@ -11,12 +11,15 @@ namespace contour_reg {
 /// A range is valid when finite and inside [range_min, range_max); anything else
 /// (NaN, inf, 0, negative, no-return readings at the maximum) marks an invalid beam.
 struct LaserScan {
-  double stamp = 0.0;            ///< seconds
+  double stamp = 0.0;            ///< seconds, when beam 0 was taken (sensor_msgs' convention)
   double angle_min = 0.0;        ///< rad, bearing of beam 0
   double angle_increment = 0.0;  ///< rad between consecutive beams
   double range_min = 0.0;        ///< m, readings below are invalid
   double range_max = 0.0;        ///< m, readings at or above are invalid (0: no limit)
-  std::vector<float> ranges;     ///< m
+  /// s between consecutive beams, as sensor_msgs/LaserScan's time_increment: beam n was taken
+  /// at stamp + n * time_increment. 0: all at the stamp (a stopped robot, or unknown).
+  double time_increment = 0.0;
+  std::vector<float> ranges;  ///< m
 
   /// True when beam range r can be used.
   bool isValidRange(double r) const {

@@ -1,0 +1,33 @@
+#pragma once
+/// @file deskew.h
+/// Beyond the paper: motion compensation (deskewing) of a scan taken while moving.
+///
+/// A spinning LIDAR takes beam n at stamp + n * time_increment (LaserScan::time_increment),
+/// each from where the robot is then; on a moving robot a straight wall comes out bent. With
+/// the motion over the scan as a constant twist (velocity and yaw rate in the frame of the
+/// sensor at the stamp), the sensor at time t stands at exp(t * twist), and every beam's point
+/// is moved from there into the frame of the sensor at the stamp. The result is the scan's
+/// polar code (contour.h) as a scan taken all at once at its stamp would give it, ready for
+/// extractContourFeatures.
+
+#include "contour_reg/core/contour.h"
+#include "contour_reg/core/laser_scan.h"
+
+namespace contour_reg {
+
+/// A constant planar velocity: m/s along x and y, rad/s about z, in the sensor's frame at the stamp.
+struct Twist2D {
+  double vx = 0.0, vy = 0.0, wz = 0.0;
+};
+
+/// The pose, as a complex position and a heading (rad), reached after `t` s at `twist` from the identity.
+void integrateTwist(const Twist2D &twist, double t, Complex &position, double &heading);
+
+/// The deskewed polar code of `scan` into `code` (beam order, NaN for invalid beams). With a
+/// time_increment of 0 or a zero twist it equals polarCode(scan).
+void deskewedPolarCode(const LaserScan &scan, const Twist2D &twist, ComplexSequence &code);
+
+/// The same, returned.
+ComplexSequence deskewedPolarCode(const LaserScan &scan, const Twist2D &twist);
+
+}  // namespace contour_reg

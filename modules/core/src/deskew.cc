@@ -1,0 +1,37 @@
+#include "contour_reg/core/deskew.h"
+
+#include <cmath>
+
+namespace contour_reg {
+
+void integrateTwist(const Twist2D &twist, double t, Complex &position, double &heading) {
+  heading = twist.wz * t;
+  // The exponential of SE(2): the velocity turns with the heading along the way.
+  const double theta = heading;
+  double a = t, b = 0.0;  // position = (a + i b) * (vx + i vy)
+  if (std::abs(theta) > 1e-9) {
+    a = std::sin(theta) / twist.wz;
+    b = (1.0 - std::cos(theta)) / twist.wz;
+  }
+  position = Complex(a, b) * Complex(twist.vx, twist.vy);
+}
+
+void deskewedPolarCode(const LaserScan &scan, const Twist2D &twist, ComplexSequence &code) {
+  polarCode(scan, code);
+  if (scan.time_increment == 0.0 || (twist.vx == 0.0 && twist.vy == 0.0 && twist.wz == 0.0)) return;
+  for (std::size_t n = 0; n < code.size(); ++n) {
+    if (!isFinite(code[n])) continue;
+    Complex position;
+    double heading = 0.0;
+    integrateTwist(twist, scan.time_increment * static_cast<double>(n), position, heading);
+    code[n] = position + std::polar(1.0, heading) * code[n];
+  }
+}
+
+ComplexSequence deskewedPolarCode(const LaserScan &scan, const Twist2D &twist) {
+  ComplexSequence code;
+  deskewedPolarCode(scan, twist, code);
+  return code;
+}
+
+}  // namespace contour_reg
