@@ -31,6 +31,7 @@ struct ExperimentOptions {
   int arrivals = 10;
   unsigned seed = 1, jobs = 0;
   std::string guess = "zero";
+  bool deskew = false;
   ScenarioOptions scenario;
   MethodOptions method_options;
 };
@@ -158,6 +159,7 @@ int runExperiment(const ExperimentOptions &options) {
   settings.run = runSettings(options.scenario, options.rates.front(), options.seed);
   settings.matcher = options.method_options.settings();
   settings.guess = guessSource(options.guess);
+  settings.deskew = options.deskew;
   settings.jobs = options.jobs;
   ProgressBar progress("experiment");
   settings.progress = [&progress](std::size_t done, std::size_t all) { progress(done, all); };
@@ -202,6 +204,8 @@ void addExperimentCommand(CLI::App &app) {
   command->add_option("--seed", options->seed, "Seed of the first arrival")->capture_default_str();
   command->add_option("--jobs,-j", options->jobs, "Parallel arrivals (default: one per core)");
   addGuessOption(*command, options->guess);
+  command->add_flag("--deskew", options->deskew,
+                    "Deskew scans taken while moving (--motion continuous) with the motion over each scan");
   addScenarioOptions(*command, options->scenario);
   addMethodOptions(*command, options->method_options);
   command->callback([options]() {

@@ -18,7 +18,7 @@ namespace {
 
 struct OdometryCommandOptions {
   std::string input, output, method = "contour", guess = "zero";
-  bool odom_guess = false, keyframes = false;
+  bool odom_guess = false, keyframes = false, deskew = false;
   std::string debug_dir, covariance;
   std::size_t debug_every = 0;
   double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
@@ -51,6 +51,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   odometry::OdometryOptions run_options;
   run_options.guess = guessSource(options.odom_guess ? "odom" : options.guess);
   run_options.keyframes = options.keyframes;
+  run_options.deskew = options.deskew;
   run_options.keyframe_distance = options.keyframe_distance;
   run_options.keyframe_angle = options.keyframe_angle_deg * M_PI / 180.0;
   ProgressBar progress(options.method);
@@ -93,6 +94,8 @@ void addOdometryCommand(CLI::App &app) {
   addGuessOption(*command, options->guess);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
   command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
+  command->add_flag("--deskew", options->deskew,
+                    "Deskew scans that carry beam timing with the motion over each scan (docs/algorithm.md)");
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
       ->capture_default_str()
       ->check(nonNegative());

@@ -8,6 +8,9 @@
 #include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/odometry/odometry.h"
+#include "contour_reg/simulation/office.h"
+#include "contour_reg/simulation/paths.h"
+#include "contour_reg/simulation/simulated_run.h"
 #include "scenes.h"
 
 namespace contour_reg::odometry {
@@ -66,6 +69,25 @@ TEST(Odometry, StepsCarryTheChainedMotionAndAnHonestCovariance) {
         step.covariance + Eigen::Vector3d(1e-4, 1e-4, std::pow(0.2 * M_PI / 180, 2)).asDiagonal().toDenseMatrix();
     EXPECT_LT(error.dot(covariance.ldlt().solve(error)), 16.27) << "step " << step.scan;
   }
+}
+
+// The office's S path driven without stopping, 5 Hz: the scans are bent by the motion.
+TEST(Odometry, DeskewingScansTakenWhileMovingCutsTheEndPointError) {
+  simulation::RunSettings settings;
+  settings.rate = 5.0;
+  settings.motion = simulation::Motion::kContinuous;
+  const simulation::SimulatedRun run =
+      simulation::simulateRun(simulation::makeOfficeWorld(), simulation::officePath("S"), settings);
+  auto endPoint = [&](bool deskew) {
+    auto matcher = makeScanMatcher("contour");
+    OdometryOptions options;
+    options.deskew = deskew;
+    const OdometryRun odometry = runOdometry(run.log, *matcher, options);
+    return evaluation::endPointError(evaluation::associate(odometry.trajectory, run.ground_truth)).percent;
+  };
+  const double raw = endPoint(false), deskewed = endPoint(true);
+  EXPECT_GT(raw, 2.0);  // % of the path
+  EXPECT_LT(deskewed, 0.5 * raw);
 }
 
 TEST(Odometry, KeyframesGiveATrajectoryAsGood) {

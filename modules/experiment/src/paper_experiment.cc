@@ -65,6 +65,7 @@ std::vector<ArrivalResult> runExperiment(const simulation::World &world,
 
       odometry::OdometryOptions options;
       options.guess = settings.guess;
+      options.deskew = settings.deskew;
       for (std::size_t m = 0; m < per_arrival; ++m) {
         ArrivalResult &result = results[j * per_arrival + m];
         result.path = arrival.path;

@@ -43,6 +43,8 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   io::Pose2D velocity_motion{};  // last scan-to-scan motion
   double velocity_dt = 0.0;
   std::size_t keyframe = 0;
+  // Each scan's motion over its sweep, fixed when the scan is first matched (the first has none).
+  std::vector<Twist2D> twists(entries.size());
   for (std::size_t k = 1; k < entries.size(); ++k) {
     const std::size_t reference = options.keyframes ? keyframe : k - 1;
     const io::Pose2D previous = poses[k - 1];
@@ -58,20 +60,37 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     if (options.guess == GuessSource::kConstantVelocity) expected = by_velocity;
 
     const io::Pose2D guess = between(poses[reference], expected);
-    MatchResult match = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess));
+    if (options.deskew && entries[k].scan.time_increment > 0.0 && velocity_dt > 1e-3)
+      twists[k] = {velocity_motion.x / velocity_dt, velocity_motion.y / velocity_dt, velocity_motion.yaw / velocity_dt};
+    MatchResult match =
+        matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess), twists[reference], twists[k]);
     // A failure gets a second try from the constant-velocity prediction when that is a
     // different guess (a turn or a drive that goes on, where the first guess was "no motion").
     const io::Pose2D velocity_guess = between(poses[reference], by_velocity);
     const io::Pose2D guess_gap = between(guess, velocity_guess);
     if (!match.converged && options.retry_with_velocity && velocity_scale > 0.0 &&
         (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05)) {
-      const MatchResult retry = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(velocity_guess));
+      const MatchResult retry = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(velocity_guess),
+                                              twists[reference], twists[k]);
       const double first_ms = match.milliseconds;
       if (retry.converged) {
         match = retry;
         ++run.stats.recovered_by_retry;
       }
       match.milliseconds = first_ms + retry.milliseconds;
+    }
+    // Deskewed with the motion this registration found over the interval, rather than the last one.
+    if (match.converged && twists[k].vx + twists[k].vy + twists[k].wz != 0.0 && dt > 1e-3 && reference == k - 1) {
+      const io::Pose2D found = toPose(match.transform);
+      const Twist2D better{found.x / dt, found.y / dt, found.yaw / dt};
+      const MatchResult again =
+          matcher.match(entries[reference].scan, entries[k].scan, match.transform, twists[reference], better);
+      const double both_ms = match.milliseconds + again.milliseconds;
+      if (again.converged) {
+        match = again;
+        twists[k] = better;
+      }
+      match.milliseconds = both_ms;
     }
     if (match.converged && match.degenerate && options.reject_degenerate) {
       match.converged = false;

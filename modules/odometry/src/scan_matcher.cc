@@ -108,23 +108,28 @@ ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool 
       swap_source_and_target_(std::move(swap_source_and_target)),
       contour_(contour) {}
 
-Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan) {
-  if (wants_beam_order_) return beamCloud(scan);
-  auto finite = pcl::make_shared<Cloud>();  // ICP and NDT take the valid beams only
-  finite->reserve(scan.ranges.size());
-  for (const Complex &c : polarCode(scan))
-    if (isFinite(c)) finite->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
-  return finite;
+Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan, const Twist2D &twist) {
+  const ComplexSequence code = deskewedPolarCode(scan, twist);
+  auto cloud = pcl::make_shared<Cloud>();
+  cloud->reserve(code.size());
+  for (const Complex &c : code)  // ICP and NDT take the valid beams only, the contour methods every beam in order
+    if (wants_beam_order_ || isFinite(c)) cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
+  cloud->is_dense = !wants_beam_order_;
+  return cloud;
 }
 
-MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess) {
+MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess,
+                               const Twist2D &target_twist, const Twist2D &source_twist) {
   // The clouds first (scan conversion is not the registration's time), then what changed.
-  const bool new_target = !(keyOf(target) == target_key_);
-  const bool swap = new_target && keyOf(target) == source_key_ && swap_source_and_target_ && source_cloud_;
-  const bool new_source = !(keyOf(source) == (swap ? target_key_ : source_key_));
+  const bool new_target = !(keyOf(target, target_twist) == target_key_);
+  const bool swap =
+      new_target && keyOf(target, target_twist) == source_key_ && swap_source_and_target_ && source_cloud_;
+  const bool new_source = !(keyOf(source, source_twist) == (swap ? target_key_ : source_key_));
   Cloud::Ptr next_target =
-      new_target && !swap ? (keyOf(target) == source_key_ ? source_cloud_ : cloudFor(target)) : nullptr;
-  Cloud::Ptr next_source = new_source ? cloudFor(source) : nullptr;
+      new_target && !swap
+          ? (keyOf(target, target_twist) == source_key_ ? source_cloud_ : cloudFor(target, target_twist))
+          : nullptr;
+  Cloud::Ptr next_source = new_source ? cloudFor(source, source_twist) : nullptr;
 
   const auto start = std::chrono::steady_clock::now();
   if (swap) {
@@ -133,12 +138,12 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
     std::swap(source_key_, target_key_);
   } else if (new_target) {
     target_cloud_ = std::move(next_target);
-    target_key_ = keyOf(target);
+    target_key_ = keyOf(target, target_twist);
     registration_->setInputTarget(target_cloud_);
   }
   if (new_source) {
     source_cloud_ = std::move(next_source);
-    source_key_ = keyOf(source);
+    source_key_ = keyOf(source, source_twist);
     registration_->setInputSource(source_cloud_);
   }
   MatchResult result;

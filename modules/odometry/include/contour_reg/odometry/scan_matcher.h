@@ -17,6 +17,7 @@
 
 #include "contour_reg/contour_registration.h"
 #include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/deskew.h"
 #include "contour_reg/core/laser_scan.h"
 #include "contour_reg/core/registration.h"
 
@@ -71,20 +72,29 @@ class ScanMatcher {
   const std::string &name() const { return name_; }
   Registration &registration() { return *registration_; }
 
-  /// Registers `source` onto `target` from `guess` (source to target).
+  /// Registers `source` onto `target` from `guess` (source to target). A scan that carries
+  /// beam timing is deskewed with its twist (deskew.h) when its cloud is built; a scan's
+  /// cloud is built once, when it first appears, so its twist then is the one used.
   MatchResult match(const LaserScan &target, const LaserScan &source,
-                    const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity());
+                    const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity(), const Twist2D &target_twist = {},
+                    const Twist2D &source_twist = {});
 
  private:
-  // A scan is known by its address, its range buffer and its stamp.
+  // A scan is known by its address, its range buffer, its stamp and the twist it is deskewed with.
   struct ScanKey {
     const LaserScan *scan = nullptr;
     const float *ranges = nullptr;
     double stamp = 0.0;
-    bool operator==(const ScanKey &o) const { return scan == o.scan && ranges == o.ranges && stamp == o.stamp; }
+    Twist2D twist;
+    bool operator==(const ScanKey &o) const {
+      return scan == o.scan && ranges == o.ranges && stamp == o.stamp && twist.vx == o.twist.vx &&
+             twist.vy == o.twist.vy && twist.wz == o.twist.wz;
+    }
   };
-  static ScanKey keyOf(const LaserScan &scan) { return {&scan, scan.ranges.data(), scan.stamp}; }
-  Cloud::Ptr cloudFor(const LaserScan &scan);
+  static ScanKey keyOf(const LaserScan &scan, const Twist2D &twist) {
+    return {&scan, scan.ranges.data(), scan.stamp, twist};
+  }
+  Cloud::Ptr cloudFor(const LaserScan &scan, const Twist2D &twist);
 
   std::string name_;
   Registration::Ptr registration_;
