@@ -1,24 +1,6 @@
 # The contour_reg tool on bad command lines and references that cover nothing: every case
 # exits with the documented code, names the option or the path, and writes nothing.
-set(LOG ${SOURCE_DIR}/data/office/L-hokuyo-2hz.clf)
-set(GT ${SOURCE_DIR}/data/office/L-hokuyo-2hz.gt.tum)
-file(REMOVE_RECURSE ${WORK_DIR})
-file(MAKE_DIRECTORY ${WORK_DIR})
-
-function(expect_run code)
-  execute_process(COMMAND ${TOOL} ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT result EQUAL code)
-    message(FATAL_ERROR "contour_reg ${ARGN}: exit ${result}, expected ${code}\n${out}\n${err}")
-  endif()
-  set(LAST_OUT "${out}" PARENT_SCOPE)
-  set(LAST_ERR "${err}" PARENT_SCOPE)
-endfunction()
-
-function(expect_match text pattern)
-  if(NOT text MATCHES "${pattern}")
-    message(FATAL_ERROR "expected /${pattern}/ in:\n${text}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_test_support.cmake)
 
 # Nothing may appear in the work folder but what a case writes on purpose.
 function(expect_nothing_written)

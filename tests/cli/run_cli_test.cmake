@@ -1,23 +1,5 @@
 # Runs the contour_reg tool's subcommands on the bundled log and checks exit codes and outputs.
-set(LOG ${SOURCE_DIR}/data/office/L-hokuyo-2hz.clf)
-set(GT ${SOURCE_DIR}/data/office/L-hokuyo-2hz.gt.tum)
-file(REMOVE_RECURSE ${WORK_DIR})
-file(MAKE_DIRECTORY ${WORK_DIR})
-
-function(expect_run code)
-  execute_process(COMMAND ${TOOL} ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT result EQUAL code)
-    message(FATAL_ERROR "contour_reg ${ARGN}: exit ${result}, expected ${code}\n${out}\n${err}")
-  endif()
-  set(LAST_OUT "${out}" PARENT_SCOPE)
-  set(LAST_ERR "${err}" PARENT_SCOPE)
-endfunction()
-
-function(expect_match text pattern)
-  if(NOT text MATCHES "${pattern}")
-    message(FATAL_ERROR "expected /${pattern}/ in:\n${text}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_test_support.cmake)
 
 # Every subcommand has --help.
 foreach(command features simulate odometry evaluate compare relations debug)

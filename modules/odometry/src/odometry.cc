@@ -15,6 +15,9 @@ using io::toPose;
 
 namespace {
 
+// The constant twist that makes `motion` in `dt` s.
+Twist2D twistOver(const io::Pose2D &motion, double dt) { return {motion.x / dt, motion.y / dt, motion.yaw / dt}; }
+
 // Wheel odometry between scans a and b of the log, when both have it.
 std::optional<io::Pose2D> wheelMotion(const io::LogEntry &a, const io::LogEntry &b) {
   if (!a.odometry || !b.odometry) return std::nullopt;
@@ -60,8 +63,8 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     if (options.guess == GuessSource::kConstantVelocity) expected = by_velocity;
 
     const io::Pose2D guess = between(poses[reference], expected);
-    if (options.deskew && entries[k].scan.time_increment > 0.0 && velocity_dt > 1e-3)
-      twists[k] = {velocity_motion.x / velocity_dt, velocity_motion.y / velocity_dt, velocity_motion.yaw / velocity_dt};
+    const bool deskewing = options.deskew && entries[k].scan.time_increment > 0.0;
+    if (deskewing && velocity_dt > 1e-3) twists[k] = twistOver(velocity_motion, velocity_dt);
     MatchResult match =
         matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess), twists[reference], twists[k]);
     // A failure gets a second try from the constant-velocity prediction when that is a
@@ -80,9 +83,8 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       match.milliseconds = first_ms + retry.milliseconds;
     }
     // Deskewed with the motion this registration found over the interval, rather than the last one.
-    if (match.converged && twists[k].vx + twists[k].vy + twists[k].wz != 0.0 && dt > 1e-3 && reference == k - 1) {
-      const io::Pose2D found = toPose(match.transform);
-      const Twist2D better{found.x / dt, found.y / dt, found.yaw / dt};
+    if (deskewing && match.converged && dt > 1e-3 && reference == k - 1) {
+      const Twist2D better = twistOver(toPose(match.transform), dt);
       const MatchResult again =
           matcher.match(entries[reference].scan, entries[k].scan, match.transform, twists[reference], better);
       const double both_ms = match.milliseconds + again.milliseconds;

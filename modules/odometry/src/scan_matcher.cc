@@ -92,10 +92,11 @@ const std::vector<std::string> &methodNames() {
   return names;
 }
 
-Cloud::Ptr beamCloud(const LaserScan &scan) {
+Cloud::Ptr beamCloud(const LaserScan &scan, const Twist2D &twist) {
   auto cloud = pcl::make_shared<Cloud>();
   cloud->reserve(scan.ranges.size());
-  for (const Complex &c : polarCode(scan)) cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
+  for (const Complex &c : deskewedPolarCode(scan, twist))
+    cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
   cloud->is_dense = false;
   return cloud;
 }
@@ -109,13 +110,12 @@ ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool 
       contour_(contour) {}
 
 Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan, const Twist2D &twist) {
-  const ComplexSequence code = deskewedPolarCode(scan, twist);
-  auto cloud = pcl::make_shared<Cloud>();
-  cloud->reserve(code.size());
-  for (const Complex &c : code)  // ICP and NDT take the valid beams only, the contour methods every beam in order
-    if (wants_beam_order_ || isFinite(c)) cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
-  cloud->is_dense = !wants_beam_order_;
-  return cloud;
+  if (wants_beam_order_) return beamCloud(scan, twist);
+  auto finite = pcl::make_shared<Cloud>();  // ICP and NDT take the valid beams only
+  finite->reserve(scan.ranges.size());
+  for (const Complex &c : deskewedPolarCode(scan, twist))
+    if (isFinite(c)) finite->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
+  return finite;
 }
 
 MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess,

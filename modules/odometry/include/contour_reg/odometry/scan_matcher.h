@@ -51,11 +51,12 @@ struct MatcherSettings {
 /// The method names makeScanMatcher knows: contour, icp, ndt2d, ndt, gicp, contour+icp.
 const std::vector<std::string> &methodNames();
 
-/// The beam-order cloud of a scan, NaN points for invalid beams (is_dense = false).
-Cloud::Ptr beamCloud(const LaserScan &scan);
+/// The beam-order cloud of a scan, NaN points for invalid beams (is_dense = false); with a
+/// twist, deskewed by it (deskew.h).
+Cloud::Ptr beamCloud(const LaserScan &scan, const Twist2D &twist = {});
 
 /// Registers scans with one method. The scans must not change while a matcher is used on
-/// them: a scan is known by its address, its range buffer and its stamp. A call whose target
+/// them: a scan is known by its address, its range buffer, its stamp and its twist. A call whose target
 /// is the last call's target sets no new target (the registration keeps what it extracted
 /// from it); a call whose target is the last call's source hands that source over with
 /// `swap_source_and_target` when the method has one (ContourRegistration and
