@@ -23,3 +23,18 @@ endif()
 if(CONTOUR_REG_BUILD_BENCHMARKS)
   find_package(benchmark REQUIRED)
 endif()
+# The Python module: Debian's python3, NumPy and pybind11 (python3-dev, python3-numpy,
+# pybind11-dev). The system interpreter is preferred over any other on the PATH, since
+# Debian's NumPy and pytest belong to it.
+if(CONTOUR_REG_BUILD_PYTHON)
+  if(NOT Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 COMPONENTS Interpreter Development.Module)
+  set(PYBIND11_FINDPYTHON ON)
+  find_package(pybind11 CONFIG)
+  if(NOT Python3_FOUND OR NOT pybind11_FOUND)
+    message(FATAL_ERROR "The Python module needs python3-dev and pybind11-dev (./setup.sh installs them); "
+                        "or configure with -DCONTOUR_REG_BUILD_PYTHON=OFF")
+  endif()
+endif()

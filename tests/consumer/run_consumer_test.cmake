@@ -42,3 +42,9 @@ foreach(languages CXX C,CXX)
   run(${CMAKE_COMMAND} --build ${WORK_DIR}/build-${name})
   run(${WORK_DIR}/build-${name}/consumer)
 endforeach()
+
+# The installed Python package imports from its install folder and registers a scan pair.
+if(PYTHON)
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR} ${PYTHON} ${SOURCE_DIR}/tests/consumer/consumer.py
+      ${WORK_DIR}/prefix/${PYTHON_DIR})
+endif()

@@ -146,6 +146,28 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
     source_key_ = keyOf(source, source_twist);
     registration_->setInputSource(source_cloud_);
   }
+  return align(guess, start);
+}
+
+MatchResult ScanMatcher::match(const Cloud::Ptr &target, const Cloud::Ptr &source, const Eigen::Matrix3d &guess) {
+  const auto input = [this](const Cloud::Ptr &beams) {
+    if (wants_beam_order_) return beams;
+    auto finite = pcl::make_shared<Cloud>();
+    for (const pcl::PointXYZ &p : *beams)
+      if (std::isfinite(p.x) && std::isfinite(p.y)) finite->push_back(pcl::PointXYZ(p.x, p.y, 0.f));
+    return finite;
+  };
+  Cloud::Ptr next_target = input(target), next_source = input(source);
+  const auto start = std::chrono::steady_clock::now();
+  source_key_ = target_key_ = ScanKey{};  // a later scan call sets both inputs anew
+  target_cloud_ = std::move(next_target);
+  source_cloud_ = std::move(next_source);
+  registration_->setInputTarget(target_cloud_);
+  registration_->setInputSource(source_cloud_);
+  return align(guess, start);
+}
+
+MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady_clock::time_point start) {
   MatchResult result;
   Cloud aligned;
   if (target_cloud_->empty() || source_cloud_->empty()) {
@@ -161,6 +183,7 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
   if (contour_) {
     result.degenerate = contour_->isDegenerate();
     result.covariance = contour_->getCovariance();
+    result.inliers = contour_->getResult().inliers.size();
     if (!contour_->hasConverged()) {
       result.reason = contour_->getFailureReason();
       result.status = toString(contour_->getResult().status);

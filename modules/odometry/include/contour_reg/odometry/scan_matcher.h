@@ -5,6 +5,8 @@
 /// method sees the same scans and the same guess; each gets the cloud form it needs
 /// (beam order with NaN beams for the contour method, finite points for the others).
 
+#include <chrono>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -36,6 +38,7 @@ struct MatchResult {
   std::string reason;         ///< why not converged, in words ("" when converged)
   double milliseconds = 0.0;  ///< registration only (features of new scans included)
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw; zero when the method gives none
+  std::size_t inliers = 0;  ///< contour methods: the special-point pairs the motion rests on (0 otherwise)
 };
 
 /// Settings of the methods that are worth changing from the command line.
@@ -80,6 +83,12 @@ class ScanMatcher {
                     const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity(), const Twist2D &target_twist = {},
                     const Twist2D &source_twist = {});
 
+  /// Registers beam-order clouds (x, y in the sensor frame, a NaN point for an invalid beam,
+  /// as beamCloud makes them); methods that take finite points get the finite ones. Nothing
+  /// is kept between such calls.
+  MatchResult match(const Cloud::Ptr &target, const Cloud::Ptr &source,
+                    const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity());
+
  private:
   // A scan is known by its address, its range buffer, its stamp and the twist it is deskewed with.
   struct ScanKey {
@@ -96,6 +105,8 @@ class ScanMatcher {
     return {&scan, scan.ranges.data(), scan.stamp, twist};
   }
   Cloud::Ptr cloudFor(const LaserScan &scan, const Twist2D &twist);
+  // Aligns the inputs set from `guess`; `start` is when the registration's time began.
+  MatchResult align(const Eigen::Matrix3d &guess, std::chrono::steady_clock::time_point start);
 
   std::string name_;
   Registration::Ptr registration_;

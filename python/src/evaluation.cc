@@ -1,0 +1,98 @@
+// The evaluation metrics (end point, drift, ATE, relation errors) and planar pose helpers.
+#include <cmath>
+#include <limits>
+
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "contour_reg/evaluation/metrics.h"
+#include "contour_reg/io/pose2d.h"
+
+namespace contour_reg::python {
+
+namespace {
+
+std::vector<io::Relation> relationsOf(const py::handle &array) {
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
+  if (!a || a.ndim() != 2 || a.shape(1) != 5)
+    throw py::value_error("relations must be an N x 5 array (t1 s, t2 s, x m, y m, yaw rad), as read_relations()");
+  const auto v = a.unchecked<2>();
+  std::vector<io::Relation> relations(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t n = 0; n < v.shape(0); ++n) relations[n] = {v(n, 0), v(n, 1), {v(n, 2), v(n, 3), v(n, 4)}};
+  return relations;
+}
+
+py::dict relationDict(const evaluation::RelationErrors &r) {
+  py::dict d;
+  d["count"] = r.count;
+  d["missing"] = r.missing;
+  d["translation_mean_m"] = r.translation_mean;
+  d["translation_std_m"] = r.translation_std;
+  d["rotation_mean_deg"] = r.rotation_mean;
+  d["rotation_std_deg"] = r.rotation_std;
+  return d;
+}
+
+py::dict evaluateTrajectory(const py::handle &estimate, const py::object &ground_truth, const py::object &relations,
+                            double local_dt) {
+  const io::Trajectory est = trajectoryOf(estimate, "estimate");
+  io::Trajectory gt;
+  std::vector<io::Relation> rel;
+  if (!ground_truth.is_none()) gt = trajectoryOf(ground_truth, "ground_truth");
+  if (!relations.is_none()) rel = relationsOf(relations);
+  const evaluation::Evaluation e =
+      evaluation::evaluate(est, ground_truth.is_none() ? nullptr : &gt, relations.is_none() ? nullptr : &rel, local_dt);
+  py::dict d;
+  d["estimate_poses"] = e.estimate_poses;
+  d["matched_poses"] = e.matched_poses;
+  if (e.end_point) {
+    d["end_point_percent"] = e.end_point->percent;
+    d["end_point_m"] = e.end_point->error;
+    d["path_length_m"] = e.end_point->path_length;
+  }
+  if (e.drift) d["drift_percent"] = e.drift->mean_percent;
+  if (e.ate) d["ate_m"] = *e.ate;
+  if (e.relations_all) d["relations_all"] = relationDict(*e.relations_all);
+  if (e.relations_local) d["relations_local"] = relationDict(*e.relations_local);
+  return d;
+}
+
+io::Pose2D poseOf(const py::handle &pose) {
+  const auto p = pose.cast<std::vector<double>>();
+  if (p.size() != 3) throw py::value_error("a pose is (x m, y m, yaw rad)");
+  return {p[0], p[1], p[2]};
+}
+
+py::tuple poseTuple(const io::Pose2D &p) { return py::make_tuple(p.x, p.y, p.yaw); }
+
+}  // namespace
+
+void bindEvaluation(py::module_ &m) {
+  m.def("evaluate", &evaluateTrajectory, py::arg("estimate"), py::arg("ground_truth") = py::none(),
+        py::arg("relations") = py::none(), py::arg("local_dt") = 5.0,
+        "Every metric the references allow, as a dict. With ground_truth (N x 4): end_point_percent (the paper's "
+        "end-point error over path length), end_point_m, path_length_m, drift_percent (over 10 m windows), ate_m. "
+        "With relations (N x 5): relations_all and relations_local (|t2 - t1| <= local_dt s), each with count, "
+        "missing, translation_mean_m, translation_std_m, rotation_mean_deg, rotation_std_deg. A metric the "
+        "references do not cover is absent.");
+  m.def(
+      "relation_errors",
+      [](const py::handle &estimate, const py::handle &relations, double max_dt) {
+        return relationDict(
+            evaluation::relationErrors(trajectoryOf(estimate, "estimate"), relationsOf(relations), max_dt));
+      },
+      py::arg("estimate"), py::arg("relations"), py::arg("max_dt") = std::numeric_limits<double>::infinity(),
+      "Relation errors (Kümmerle et al. 2009) of the relations at most max_dt s apart, as a dict.");
+  m.def(
+      "relative_pose",
+      [](const py::handle &a, const py::handle &b) { return poseTuple(io::between(poseOf(a), poseOf(b))); },
+      py::arg("a"), py::arg("b"), "Pose b in the frame of pose a, (x, y, yaw).");
+  m.def(
+      "pose_matrix", [](const py::handle &pose) { return matrixArray(io::toMatrix(poseOf(pose))); }, py::arg("pose"),
+      "The 3 x 3 homogeneous transform of a pose (x, y, yaw).");
+  m.def(
+      "matrix_pose", [](const py::handle &matrix) { return poseTuple(io::toPose(matrixOf(matrix, "matrix"))); },
+      py::arg("matrix"), "The pose (x, y, yaw) of a 3 x 3 homogeneous transform.");
+}
+
+}  // namespace contour_reg::python

@@ -1,0 +1,82 @@
+// odometry(): a whole log chained into a trajectory by one method, with every step's result.
+#include <sstream>
+
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "contour_reg/odometry/odometry.h"
+
+namespace contour_reg::python {
+
+namespace {
+
+odometry::GuessSource guessSource(const std::string &guess) {
+  if (guess == "zero") return odometry::GuessSource::kZero;
+  if (guess == "odom") return odometry::GuessSource::kOdometry;
+  if (guess == "velocity") return odometry::GuessSource::kConstantVelocity;
+  throw py::value_error("unknown guess '" + guess + "' (zero, odom, velocity)");
+}
+
+odometry::OdometryRun runOdometry(const io::ScanLog &log, const std::string &method, const std::string &guess,
+                                  bool keyframes, bool deskew, const py::kwargs &settings) {
+  odometry::OdometryOptions options;
+  options.guess = guessSource(guess);
+  options.keyframes = keyframes;
+  options.deskew = deskew;
+  std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, matcherSettings(settings));
+  if (!matcher) throw py::value_error("unknown method '" + method + "'; methods() lists them");
+  py::gil_scoped_release release;
+  return odometry::runOdometry(log, *matcher, options);
+}
+
+}  // namespace
+
+void bindOdometry(py::module_ &m) {
+  py::class_<odometry::OdometryStep>(m, "OdometryStep", "One registration of an odometry run.")
+      .def_readonly("reference", &odometry::OdometryStep::reference, "index of the scan registered against")
+      .def_readonly("scan", &odometry::OdometryStep::scan, "index of the scan registered")
+      .def_readonly("converged", &odometry::OdometryStep::converged)
+      .def_property_readonly(
+          "status", [](const odometry::OdometryStep &s) { return s.converged ? std::string("converged") : s.status; })
+      .def_property_readonly(
+          "motion",
+          [](const odometry::OdometryStep &s) { return py::make_tuple(s.motion.x, s.motion.y, s.motion.yaw); },
+          "(x m, y m, yaw rad) from the reference scan to the scan, as chained (bridged when not converged)")
+      .def_property_readonly(
+          "covariance", [](const odometry::OdometryStep &s) { return matrixArray(s.covariance); },
+          "3 x 3 covariance of the motion; zero when the method gives none or the step failed");
+
+  py::class_<odometry::OdometryRun>(m, "OdometryRun", "A trajectory and the registrations it was chained from.")
+      .def_property_readonly(
+          "trajectory", [](const odometry::OdometryRun &r) { return trajectoryArray(r.trajectory); },
+          "N x 4 (stamp, x, y, yaw): one pose per scan, the first at the origin")
+      .def_readonly("steps", &odometry::OdometryRun::steps)
+      .def_property_readonly("registrations", [](const odometry::OdometryRun &r) { return r.stats.registrations; })
+      .def_property_readonly(
+          "failures", [](const odometry::OdometryRun &r) { return r.stats.failures; },
+          "registrations that did not converge (bridged by the wheel odometry or the previous motion)")
+      .def_property_readonly(
+          "failure_reasons", [](const odometry::OdometryRun &r) { return r.stats.failure_reasons; }, "status -> count")
+      .def_property_readonly(
+          "milliseconds",
+          [](const odometry::OdometryRun &r) {
+            return py::array_t<double>(static_cast<py::ssize_t>(r.stats.milliseconds.size()),
+                                       r.stats.milliseconds.data());
+          },
+          "wall time of each registration")
+      .def("__repr__", [](const odometry::OdometryRun &r) {
+        std::ostringstream out;
+        out << "OdometryRun(" << r.trajectory.size() << " poses, " << r.stats.failures << " of "
+            << r.stats.registrations << " registrations failed)";
+        return out.str();
+      });
+
+  m.def("odometry", &runOdometry, py::arg("log"), py::arg("method") = "contour", py::arg("guess") = "zero",
+        py::arg("keyframes") = false, py::arg("deskew") = false,
+        "Laser odometry over a Log with `method` (see methods()): each scan registered against the previous one "
+        "(or the last keyframe), from a guess of 'zero', 'odom' (the log's wheel odometry) or 'velocity'. A failed "
+        "registration is retried from the constant-velocity prediction, then bridged. deskew: scans with beam "
+        "timing are deskewed by the motion over them. Keyword settings as register(). Releases the GIL.");
+}
+
+}  // namespace contour_reg::python

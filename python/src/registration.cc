@@ -1,0 +1,77 @@
+// register(): one scan pair with any of the methods, and the result as Python sees it.
+#include <cmath>
+#include <sstream>
+
+#include <pcl/console/print.h>
+
+#include "bindings.h"
+#include "contour_reg/core/laser_scan.h"
+
+namespace contour_reg::python {
+
+namespace {
+
+std::string methodList() {
+  std::string names;
+  for (const std::string &n : odometry::methodNames()) names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+
+odometry::MatchResult registerPair(const py::handle &source, const py::handle &target, const std::string &method,
+                                   const py::object &guess, const py::kwargs &settings) {
+  const odometry::MatcherSettings s = matcherSettings(settings);
+  const Eigen::Matrix3d start = guess.is_none() ? Eigen::Matrix3d::Identity() : matrixOf(guess, "guess");
+  if (!start.allFinite()) throw py::value_error("guess must be finite");
+  std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, s);
+  if (!matcher) throw py::value_error("unknown method '" + method + "' (methods: " + methodList() + ")");
+  const odometry::Cloud::Ptr source_beams = beamsOf(source), target_beams = beamsOf(target);
+  py::gil_scoped_release release;  // every call has its own matcher: threads run side by side
+  return matcher->match(target_beams, source_beams, start);
+}
+
+}  // namespace
+
+void bindRegistration(py::module_ &m) {
+  // PCL's classes print a line for each pair they fail on; results say it instead.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  py::class_<odometry::MatchResult>(m, "RegistrationResult", "The outcome of one registration.")
+      .def_property_readonly(
+          "transform", [](const odometry::MatchResult &r) { return matrixArray(r.transform); },
+          "3 x 3 homogeneous transform mapping source points into the target frame (the guess when not converged)")
+      .def_property_readonly(
+          "pose",
+          [](const odometry::MatchResult &r) {
+            return py::make_tuple(r.transform(0, 2), r.transform(1, 2),
+                                  std::atan2(r.transform(1, 0), r.transform(0, 0)));
+          },
+          "(x m, y m, yaw rad): the source sensor's pose in the target frame")
+      .def_readonly("converged", &odometry::MatchResult::converged, "True when the method vouches for the transform")
+      .def_property_readonly(
+          "status", [](const odometry::MatchResult &r) { return r.converged ? std::string("converged") : r.status; },
+          "'converged', or the verdict: too_few_special_points, low_overlap, unconstrained, ambiguous, ...")
+      .def_readonly("reason", &odometry::MatchResult::reason, "why not converged, in words ('' when converged)")
+      .def_readonly("degenerate", &odometry::MatchResult::degenerate, "a direction of the motion is unconstrained")
+      .def_property_readonly(
+          "covariance", [](const odometry::MatchResult &r) { return matrixArray(r.covariance); },
+          "3 x 3 covariance of (x, y, yaw), m^2 and rad^2; zero when the method gives none")
+      .def_readonly("inliers", &odometry::MatchResult::inliers,
+                    "contour methods: the special-point pairs the motion rests on")
+      .def_readonly("milliseconds", &odometry::MatchResult::milliseconds, "wall time of the registration")
+      .def("__repr__", [](const odometry::MatchResult &r) {
+        std::ostringstream out;
+        out << "RegistrationResult(" << (r.converged ? "converged" : r.status) << ", x " << r.transform(0, 2)
+            << " m, y " << r.transform(1, 2) << " m, yaw " << std::atan2(r.transform(1, 0), r.transform(0, 0))
+            << " rad)";
+        return out.str();
+      });
+
+  m.def("methods", &odometry::methodNames, "The method names register() and odometry() take.");
+  m.def("register", &registerPair, py::arg("source"), py::arg("target"), py::arg("method") = "contour",
+        py::arg("guess") = py::none(),
+        "Registers `source` onto `target` (each a LaserScan or N x 2 points in beam order, NaN rows for invalid "
+        "beams) with `method` (see methods()), from `guess` (3 x 3, source to target; None: identity). Keyword "
+        "settings: contour_step (m), threshold, arm, candidates, local_fallback, probe_distance (m), "
+        "icp_max_distance (m), ndt_resolution (m), iterations. Releases the GIL while it registers.");
+}
+
+}  // namespace contour_reg::python

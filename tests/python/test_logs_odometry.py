@@ -1,0 +1,107 @@
+"""read_log(), odometry(), evaluate() and simulate(): known answers and the command-line tool's answers."""
+import subprocess
+
+import numpy as np
+import pytest
+
+import contour_reg as cr
+from conftest import BUNDLED_GT, BUNDLED_LOG
+
+
+def test_read_log_gives_scans_and_odometry(bundled_log):
+    assert len(bundled_log) == 99
+    assert len(bundled_log[0]) == 1081
+    assert np.all(np.diff(bundled_log.stamps) > 0)
+    assert bundled_log.odometry.shape == (99, 3) and np.isfinite(bundled_log.odometry).all()
+    assert bundled_log[-1].stamp == bundled_log.stamps[-1]
+    with pytest.raises(IndexError):
+        bundled_log[99]
+
+
+def test_a_missing_file_raises_with_its_name(tmp_path):
+    missing = tmp_path / "no-such-log.clf"
+    with pytest.raises(cr.ReadError, match="no-such-log.clf"):
+        cr.read_log(str(missing))
+    with pytest.raises(OSError):
+        cr.read_tum(str(missing))
+
+
+def test_a_bad_line_is_named_by_file_and_line(tmp_path):
+    lines = BUNDLED_LOG.read_text().splitlines()
+    first_scan = next(n for n, line in enumerate(lines) if line.startswith("ROBOTLASER1"))
+    lines[first_scan + 2] = "ROBOTLASER1 0 -2.35 4.71 0.0043 30.0 0.1 0 1081 1.0 oops"
+    corrupt = tmp_path / "corrupt.clf"
+    corrupt.write_text("\n".join(lines) + "\n")
+    log = cr.read_log(str(corrupt))
+    assert log.skipped == 1
+    assert log.problems[0].startswith(f"{corrupt}:{first_scan + 3}:")
+    bad_tum = tmp_path / "bad.tum"
+    bad_tum.write_text("0 0 0 0 0 0 0 1\n1 zero 0 0 0 0 0 1\n")
+    with pytest.raises(cr.ReadError, match="bad.tum:2"):
+        cr.read_tum(str(bad_tum))
+
+
+def test_odometry_on_the_bundled_log_matches_the_tool(tool, tmp_path, bundled_log):
+    run = cr.odometry(bundled_log, method="contour")
+    assert run.trajectory.shape == (99, 4) and run.registrations == 98 and run.failures == 0
+    assert len(run.steps) == 98 and all(step.converged for step in run.steps)
+    tum = tmp_path / "contour.tum"
+    subprocess.run([tool, "odometry", bundled_log.source, "-m", "contour", "-o", str(tum)], check=True,
+                   capture_output=True)
+    np.testing.assert_allclose(run.trajectory, cr.read_tum(str(tum)), atol=1e-5)
+    metrics = cr.evaluate(run.trajectory, cr.read_tum(str(BUNDLED_GT)))
+    assert metrics["end_point_percent"] < 0.5 and metrics["ate_m"] < 0.05
+    assert metrics["path_length_m"] == pytest.approx(24.4, abs=0.5)
+
+
+def test_steps_chain_to_the_trajectory(bundled_log):
+    run = cr.odometry(bundled_log, method="contour")
+    pose = np.zeros(3)
+    for step in run.steps:
+        pose = cr.matrix_pose(cr.pose_matrix(pose) @ cr.pose_matrix(step.motion))
+    np.testing.assert_allclose(pose[:2], run.trajectory[-1, 1:3], atol=1e-6)
+
+
+def test_simulate_and_evaluate_know_the_truth(s_run):
+    assert len(s_run.log) == s_run.ground_truth.shape[0]
+    np.testing.assert_allclose(s_run.log.stamps, np.arange(len(s_run.log)) / 5.0)
+    assert s_run.path_length > 10
+    perfect = cr.evaluate(s_run.ground_truth, s_run.ground_truth)
+    assert perfect["end_point_percent"] == pytest.approx(0.0, abs=1e-9) and perfect["ate_m"] == pytest.approx(0.0, abs=1e-9)
+    shifted = s_run.ground_truth.copy()
+    shifted[-1, 1] += 0.5  # the last pose 0.5 m off: end-point error 0.5 m over the path
+    end = cr.evaluate(shifted, s_run.ground_truth)
+    assert end["end_point_m"] == pytest.approx(0.5, abs=1e-6)
+    assert "relations_all" not in end
+
+
+def test_relation_errors_of_the_truth_are_zero(s_run):
+    gt = s_run.ground_truth
+    relations = np.array([[gt[k, 0], gt[k + 5, 0], *cr.relative_pose(gt[k, 1:], gt[k + 5, 1:])]
+                          for k in range(0, len(gt) - 5, 5)])
+    errors = cr.relation_errors(gt, relations)
+    assert errors["count"] == len(relations) and errors["translation_mean_m"] == pytest.approx(0.0, abs=1e-9)
+    odometry = cr.Log([s_run.log[k] for k in range(len(s_run.log))], odometry=s_run.log.odometry)
+    wheel = cr.odometry(odometry, method="contour", guess="odom")
+    assert cr.relation_errors(wheel.trajectory, relations)["translation_mean_m"] < 0.02
+
+
+def test_write_and_read_back(tmp_path, s_run):
+    path = tmp_path / "s.clf"
+    cr.write_carmen(str(path), s_run.log)
+    again = cr.read_log(str(path))
+    assert len(again) == len(s_run.log)
+    np.testing.assert_allclose(again[4].ranges, s_run.log[4].ranges, atol=1e-3, equal_nan=True)
+    cr.write_tum(str(tmp_path / "gt.tum"), s_run.ground_truth)
+    np.testing.assert_allclose(cr.read_tum(str(tmp_path / "gt.tum")), s_run.ground_truth, atol=1e-5)
+
+
+def test_bad_simulation_and_odometry_arguments_raise(bundled_log):
+    with pytest.raises(ValueError, match="unknown path"):
+        cr.simulate(path="Z")
+    with pytest.raises(ValueError, match="rate"):
+        cr.simulate(rate=0)
+    with pytest.raises(ValueError, match="unknown guess"):
+        cr.odometry(bundled_log, guess="gps")
+    with pytest.raises(ValueError, match="N x 4"):
+        cr.evaluate(np.zeros((3, 3)))

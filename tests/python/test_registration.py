@@ -1,0 +1,136 @@
+"""register() and features(): known answers, the same answers as the C++ tool, NaN beams, threads, errors."""
+import csv
+import subprocess
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import pytest
+
+import contour_reg as cr
+
+
+def pose_error(result_pose, reference):
+    dx, dy = result_pose[0] - reference[0], result_pose[1] - reference[1]
+    dyaw = np.remainder(result_pose[2] - reference[2] + np.pi, 2 * np.pi) - np.pi
+    return np.hypot(dx, dy), abs(dyaw)
+
+
+def true_motion(run, k, j):
+    gt = run.ground_truth
+    return cr.relative_pose(gt[k, 1:], gt[j, 1:])
+
+
+def square_room_scan(half_width=2.0, beams=720):
+    """A scan from the centre of a square room of side 2 * half_width, 360 deg."""
+    angles = -np.pi + np.arange(beams) * (2 * np.pi / beams)
+    ranges = half_width / np.maximum(np.abs(np.cos(angles)), np.abs(np.sin(angles)))
+    return cr.LaserScan(ranges, angle_min=angles[0], angle_increment=angles[1] - angles[0], range_max=30.0)
+
+
+def test_contour_recovers_simulated_motion(s_run):
+    log = s_run.log
+    for k in range(0, len(log) - 2, 10):
+        result = cr.register(log[k + 2], log[k])
+        assert result.converged, result.reason
+        assert result.status == "converged"
+        error_m, error_rad = pose_error(result.pose, true_motion(s_run, k, k + 2))
+        assert error_m < 0.03 and error_rad < np.radians(0.5), (k, result)
+        assert result.transform.shape == (3, 3)
+        assert np.all(np.linalg.eigvalsh(result.covariance) > 0)
+
+
+def test_icp_from_the_true_motion_stays_there(s_run):
+    guess = cr.pose_matrix(true_motion(s_run, 0, 1))
+    result = cr.register(s_run.log[1], s_run.log[0], method="icp", guess=guess)
+    assert result.converged
+    error_m, _ = pose_error(result.pose, true_motion(s_run, 0, 1))
+    assert error_m < 0.03
+
+
+def test_points_give_the_same_answer_as_the_scan(bundled_log):
+    for method in ("contour", "icp"):
+        from_scans = cr.register(bundled_log[5], bundled_log[4], method=method)
+        from_points = cr.register(bundled_log[5].points(), bundled_log[4].points(), method=method)
+        assert from_scans.converged == from_points.converged and from_scans.inliers == from_points.inliers
+        np.testing.assert_allclose(from_scans.transform, from_points.transform, atol=1e-9)
+
+
+def test_nan_beams_are_accepted(s_run):
+    source, target = s_run.log[3], s_run.log[0]
+    ranges = source.ranges
+    ranges[::7] = np.nan
+    ranges[3::11] = np.inf
+    source.ranges = ranges
+    points = target.points()
+    points[::5] = np.nan
+    result = cr.register(source, points)
+    assert result.converged, result.reason
+    error_m, error_rad = pose_error(result.pose, true_motion(s_run, 0, 3))
+    assert error_m < 0.03 and error_rad < np.radians(0.5)
+    assert np.isnan(source.points()[0]).all()
+
+
+def test_an_empty_scan_is_not_converged_and_says_why(bundled_log):
+    empty = cr.LaserScan(np.full(100, np.nan), angle_min=-1.0, angle_increment=0.02)
+    result = cr.register(empty, bundled_log[0])
+    assert not result.converged
+    assert result.status != "converged" and result.reason
+    np.testing.assert_array_equal(result.transform, np.eye(3))
+
+
+def test_same_answers_as_the_command_line_tool(tool, tmp_path, bundled_log):
+    csv_path = tmp_path / "pairs.csv"
+    subprocess.run([tool, "relations", bundled_log.source, "--log-poses", "3", "--limit", "30", "--methods",
+                    "contour", "icp", "--pairs-csv", str(csv_path)], check=True, capture_output=True)
+    rows = list(csv.DictReader(open(csv_path)))
+    assert len(rows) == 60
+    for row in rows:
+        first, second = int(row["first"]), int(row["second"])
+        result = cr.register(bundled_log[second], bundled_log[first], method=row["method"])
+        assert result.converged == (row["converged"] == "1"), row
+        x, y, yaw = result.pose
+        assert abs(x - float(row["est_x_m"])) < 1e-4 and abs(y - float(row["est_y_m"])) < 1e-4, row
+        assert abs(yaw - float(row["est_yaw_rad"])) < 1e-5, row
+
+
+def test_threads_give_the_same_answers_as_one_thread(bundled_log):
+    pairs = [(k + 2, k) for k in range(0, 60, 3)]
+    serial = [cr.register(bundled_log[s], bundled_log[t]).transform for s, t in pairs]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        threaded = list(pool.map(lambda p: cr.register(bundled_log[p[0]], bundled_log[p[1]]).transform, pairs))
+    for a, b in zip(serial, threaded):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_features_of_a_square_room_are_its_four_corners():
+    features = cr.features(square_room_scan())
+    assert len(features) == 4
+    np.testing.assert_allclose(np.sort(np.abs(features.points), axis=0), np.full((4, 2), 2.0), atol=0.02)
+    np.testing.assert_allclose(features.corner_angles, np.pi / 2, atol=np.radians(5))
+    assert len(features.contours) >= 1 and features.contours[0].shape[1] == 2
+    assert np.all(features.responses > 0.08)
+
+
+def test_bad_arguments_raise():
+    scan = square_room_scan()
+    with pytest.raises(ValueError, match="unknown method 'foo'"):
+        cr.register(scan, scan, method="foo")
+    with pytest.raises(TypeError, match="unknown setting 'treshold'"):
+        cr.register(scan, scan, treshold=0.1)
+    with pytest.raises(ValueError, match="invalid setting"):
+        cr.register(scan, scan, contour_step=-1.0)
+    with pytest.raises(ValueError, match="3 x 3"):
+        cr.register(scan, scan, guess=np.eye(2))
+    with pytest.raises(ValueError, match="N x 2"):
+        cr.register(np.zeros((10, 3)), scan)
+    with pytest.raises(TypeError):
+        cr.register("scan", scan)
+    with pytest.raises(ValueError, match="evenly spaced"):
+        cr.LaserScan.from_angles(np.ones(4), np.array([0.0, 0.1, 0.25, 0.3]))
+
+
+def test_from_angles_builds_the_scan_geometry():
+    scan = cr.LaserScan.from_angles(np.array([1.0, 2.0, 3.0]), np.array([-0.1, 0.0, 0.1]), stamp=4.0)
+    assert scan.angle_min == pytest.approx(-0.1) and scan.angle_increment == pytest.approx(0.1)
+    np.testing.assert_allclose(scan.points()[1], [2.0, 0.0])
+    assert len(scan) == 3 and scan.stamp == 4.0
