@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -18,6 +19,7 @@
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
 #include "contour_reg/odometry/odometry.h"
+#include "fan_out.h"
 
 namespace contour_reg::cli {
 
@@ -37,6 +39,7 @@ struct CompareOptions {
   double local_dt = 5.0;
   io::LogReadOptions read;
   MethodOptions method_options;
+  FanOutOptions fan_out;
 };
 
 struct Input {
@@ -135,36 +138,81 @@ void writeTables(const std::vector<Row> &rows, const CompareOptions &options) {
   std::printf("\nwritten: %s, %s, one TUM trajectory per input and method\n", table_path.c_str(), csv_path.c_str());
 }
 
-int runCompare(const CompareOptions &options) {
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  std::error_code error;
-  fs::create_directories(options.out, error);
-  if (!fs::is_directory(options.out)) throw io::ReadError(options.out + ": cannot create the output folder");
+// The jobs of a comparison: every method on every input, inputs first.
+struct Job {
+  std::size_t input;
+  std::string method;
+};
 
-  std::vector<Input> inputs;
-  for (std::size_t k = 0; k < options.inputs.size(); ++k) {
-    Input input;
-    input.name = stemOf(options.inputs[k]);
-    input.log = io::readLog(options.inputs[k], options.read);
-    printReadReport(input.log);
-    if (const std::string gt = reference(options.ground_truths, k, options.inputs[k], ".gt.tum"); !gt.empty())
-      input.ground_truth = io::readTum(gt);
-    if (const std::string rel = reference(options.relations, k, options.inputs[k], ".relations"); !rel.empty())
-      input.relations = io::readRelations(rel);
-    std::fprintf(stderr, "%s: %zu scans%s%s\n", options.inputs[k].c_str(), input.log.entries.size(),
-                 input.ground_truth ? ", ground truth" : "", input.relations ? ", relations" : "");
-    inputs.push_back(std::move(input));
-  }
-
-  struct Job {
-    std::size_t input;
-    std::string method;
-  };
+std::vector<Job> planJobs(const CompareOptions &options) {
   std::vector<Job> jobs;
-  for (std::size_t k = 0; k < inputs.size(); ++k)
+  for (std::size_t k = 0; k < options.inputs.size(); ++k)
     for (const std::string &method : options.methods) jobs.push_back({k, method});
-  std::vector<Row> rows(jobs.size());
-  std::atomic<std::size_t> next{0};
+  return jobs;
+}
+
+Input loadInput(const CompareOptions &options, std::size_t k) {
+  Input input;
+  input.name = stemOf(options.inputs[k]);
+  input.log = io::readLog(options.inputs[k], options.read);
+  printReadReport(input.log);
+  if (const std::string gt = reference(options.ground_truths, k, options.inputs[k], ".gt.tum"); !gt.empty())
+    input.ground_truth = io::readTum(gt);
+  if (const std::string rel = reference(options.relations, k, options.inputs[k], ".relations"); !rel.empty())
+    input.relations = io::readRelations(rel);
+  std::fprintf(stderr, "%s: %zu scans%s%s\n", options.inputs[k].c_str(), input.log.entries.size(),
+               input.ground_truth ? ", ground truth" : "", input.relations ? ", relations" : "");
+  return input;
+}
+
+// A job's outputs: its trajectory and its record of counts and times.
+std::string trajectoryPath(const CompareOptions &options, const std::string &input, const std::string &method) {
+  return (fs::path(options.out) / (input + "." + method + ".tum")).string();
+}
+std::string recordPath(const CompareOptions &options, const std::string &input, const std::string &method) {
+  return (fs::path(options.out) / "jobs" / (input + "." + method + ".txt")).string();
+}
+
+// Runs one method over one input and writes the job's outputs. `progress` gets the scans done.
+void runJob(const CompareOptions &options, const Input &input, const std::string &method,
+            const std::function<void(std::size_t, std::size_t)> &progress) {
+  auto matcher = odometry::makeScanMatcher(method, options.method_options.settings());
+  odometry::OdometryOptions run_options;
+  run_options.guess = guessSource(options.guess);
+  run_options.keyframes = options.keyframes;
+  run_options.progress = progress;
+  const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
+  io::writeTum(trajectoryPath(options, input.name, method), run.trajectory);
+  fs::create_directories(fs::path(options.out) / "jobs");
+  writeJobRecord(recordPath(options, input.name, method), "contour_reg compare job: " + input.name + " " + method,
+                 {{"registrations", double(run.stats.registrations)},
+                  {"failures", double(run.stats.failures)},
+                  {"degenerate", double(run.stats.degenerate)},
+                  {"median_ms", percentile(run.stats.milliseconds, 0.5)},
+                  {"p95_ms", percentile(run.stats.milliseconds, 0.95)}});
+}
+
+// A job's row of the table, from its outputs.
+Row readRow(const CompareOptions &options, const Input &input, const std::string &method) {
+  const std::string path = recordPath(options, input.name, method);
+  const JobRecord record = readJobRecord(path, input.name + " " + method);
+  Row row;
+  row.input = input.name;
+  row.method = method;
+  row.registrations = static_cast<std::size_t>(recordValue(record, "registrations", path));
+  row.failures = static_cast<std::size_t>(recordValue(record, "failures", path));
+  row.degenerate = static_cast<std::size_t>(recordValue(record, "degenerate", path));
+  row.median_ms = recordValue(record, "median_ms", path);
+  row.p95_ms = recordValue(record, "p95_ms", path);
+  row.trajectory = io::readTum(trajectoryPath(options, input.name, method));
+  row.evaluation = evaluation::evaluate(row.trajectory, input.ground_truth ? &*input.ground_truth : nullptr,
+                                        input.relations ? &*input.relations : nullptr, options.local_dt);
+  return row;
+}
+
+// Runs every job on the cores of this machine; returns the number of threads used.
+unsigned runJobs(const CompareOptions &options, const std::vector<Input> &inputs, const std::vector<Job> &jobs) {
+  std::atomic<std::size_t> next{0}, finished{0};
   std::mutex print;
   // Progress over the scans of every job together.
   std::size_t all_scans = 0;
@@ -174,30 +222,15 @@ int runCompare(const CompareOptions &options) {
   auto worker = [&]() {
     for (std::size_t j = next++; j < jobs.size(); j = next++) {
       const Input &input = inputs[jobs[j].input];
-      auto matcher = odometry::makeScanMatcher(jobs[j].method, options.method_options.settings());
-      odometry::OdometryOptions run_options;
-      run_options.guess = guessSource(options.guess);
-      run_options.keyframes = options.keyframes;
       std::size_t counted = 0;  // of this job's scans
-      run_options.progress = [&](std::size_t done, std::size_t) {
+      runJob(options, input, jobs[j].method, [&](std::size_t done, std::size_t) {
         const std::size_t now = scans_done += done - counted;
         counted = done;
         std::lock_guard<std::mutex> lock(print);
         progress(now, all_scans);
-      };
-      const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
-      io::writeTum((fs::path(options.out) / (input.name + "." + jobs[j].method + ".tum")).string(), run.trajectory);
-      Row &row = rows[j];
-      row.input = input.name;
-      row.method = jobs[j].method;
-      row.registrations = run.stats.registrations;
-      row.failures = run.stats.failures;
-      row.degenerate = run.stats.degenerate;
-      row.median_ms = percentile(run.stats.milliseconds, 0.5);
-      row.p95_ms = percentile(run.stats.milliseconds, 0.95);
-      row.evaluation = evaluation::evaluate(run.trajectory, input.ground_truth ? &*input.ground_truth : nullptr,
-                                            input.relations ? &*input.relations : nullptr, options.local_dt);
-      row.trajectory = run.trajectory;
+      });
+      std::lock_guard<std::mutex> lock(print);
+      reportFinishedJob(++finished, jobs.size(), input.name + " " + jobs[j].method);
     }
   };
   const unsigned threads =
@@ -207,6 +240,24 @@ int runCompare(const CompareOptions &options) {
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread &t : pool) t.join();
   progress.finish();
+  return threads;
+}
+
+int runCompare(const CompareOptions &options) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const std::vector<Job> jobs = planJobs(options);
+  if (options.fan_out.plan) return writePlan(options.out, jobs.size());
+  if (options.fan_out.job) {
+    const Job &job = jobs[*options.fan_out.job];
+    runJob(options, loadInput(options, job.input), job.method, {});
+    reportFinishedJob(*options.fan_out.job + 1, jobs.size(), stemOf(options.inputs[job.input]) + " " + job.method);
+    return 0;
+  }
+  std::vector<Input> inputs;
+  for (std::size_t k = 0; k < options.inputs.size(); ++k) inputs.push_back(loadInput(options, k));
+  const unsigned threads = options.fan_out.merge ? 0 : runJobs(options, inputs, jobs);
+  std::vector<Row> rows;
+  for (const Job &job : jobs) rows.push_back(readRow(options, inputs[job.input], job.method));
   // A reference that covers nothing gives "-" cells; say why.
   for (const Input &input : inputs) {
     const Row *any = nullptr;
@@ -246,8 +297,9 @@ int runCompare(const CompareOptions &options) {
     drawing::writeImage((fs::path(options.out) / (input.name + ".trajectories.png")).string(),
                         drawing::drawTrajectories(estimates, *input.ground_truth, 1200, title));
   }
-  std::printf("guess: %s; %s; %u parallel jobs; ms = registration only\n\n", options.guess.c_str(),
-              options.keyframes ? "keyframes" : "scan to scan", threads);
+  std::printf("guess: %s; %s; ms = registration only\n\n", options.guess.c_str(),
+              options.keyframes ? "keyframes" : "scan to scan");
+  if (threads > 0) std::fprintf(stderr, "%u parallel jobs\n", threads);
   writeTables(rows, options);
   return 0;
 }
@@ -279,8 +331,13 @@ void addCompareCommand(CLI::App &app) {
       ->check(positive());
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
+  addFanOutOptions(*command, options->fan_out);
   command->callback([options]() {
     validateMethodOptions(options->method_options);
+    const std::size_t jobs = options->inputs.size() * options->methods.size();
+    if (options->fan_out.job && *options->fan_out.job >= jobs)
+      throw CLI::ValidationError("--job",
+                                 "the plan has " + std::to_string(jobs) + " jobs (0-" + std::to_string(jobs - 1) + ")");
     prepareOutputFolder("--out", options->out);
     runCommand([&] { return runCompare(*options); });
   });

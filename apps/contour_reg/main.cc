@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "fan_out.h"
 
 namespace {
 
@@ -46,6 +47,7 @@ bool reportUnknownCommand(const CLI::App &app, int argc, char **argv) {
 }  // namespace
 
 int main(int argc, char **argv) {
+  contour_reg::cli::rememberCommandLine(argc, argv);
   CLI::App app{"contour_reg: 2-D LIDAR scan registration and odometry by contour analysis"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("contour_reg ") + CONTOUR_REG_VERSION);

@@ -1,0 +1,53 @@
+# A comparison spread over jobs: the plan run by GNU parallel in two jobs and merged gives the
+# single run's table, except the times; a merge before the jobs have run, and a job the plan
+# does not have, are refused naming what is missing.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_test_support.cmake)
+set(STUDY compare ${LOG} --methods contour ndt2d)
+
+expect_run(0 ${STUDY} --out ${WORK_DIR}/single -j 1)
+
+expect_run(2 ${STUDY} --out ${WORK_DIR}/fan --merge)
+expect_match("${LAST_ERR}" "no result of job L-hokuyo-2hz contour")
+expect_run(2 ${STUDY} --out ${WORK_DIR}/fan --job 2)
+expect_match("${LAST_ERR}" "--job.*the plan has 2 jobs")
+expect_run(2 ${STUDY} --out ${WORK_DIR}/fan --plan --merge)
+
+expect_run(0 ${STUDY} --out ${WORK_DIR}/fan --plan)
+file(STRINGS ${WORK_DIR}/fan/plan.txt plan)
+list(LENGTH plan jobs)
+if(NOT jobs EQUAL 2)
+  message(FATAL_ERROR "expected 2 jobs in the plan, found ${jobs}:\n${plan}")
+endif()
+execute_process(COMMAND ${PARALLEL} --will-cite -j 2 INPUT_FILE ${WORK_DIR}/fan/plan.txt
+                RESULT_VARIABLE result ERROR_VARIABLE err)
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "parallel ran the plan with exit ${result}:\n${err}")
+endif()
+expect_match("${err}" "job 2/2 done: L-hokuyo-2hz ndt2d")  # one line per job, stderr not a terminal
+expect_run(0 ${STUDY} --out ${WORK_DIR}/fan --merge)
+
+# results.csv without its last two columns (median and p95 ms), and table.md without its
+# last two cells: the same.
+foreach(run single fan)
+  file(STRINGS ${WORK_DIR}/${run}/results.csv lines)
+  set(${run}_csv "")
+  foreach(line ${lines})
+    string(REGEX REPLACE ",[^,]*,[^,]*$" "" line "${line}")
+    string(APPEND ${run}_csv "${line}\n")
+  endforeach()
+  file(STRINGS ${WORK_DIR}/${run}/table.md lines)
+  set(${run}_table "")
+  foreach(line ${lines})
+    string(REGEX REPLACE "\\|[^|]*\\|[^|]*\\|$" "" line "${line}")
+    string(APPEND ${run}_table "${line}\n")
+  endforeach()
+endforeach()
+if(NOT single_csv STREQUAL fan_csv OR NOT single_table STREQUAL fan_table)
+  message(FATAL_ERROR "the merged table differs from the single run's:\n${single_table}\n${fan_table}")
+endif()
+string(REGEX MATCHALL "\n" rows "${fan_csv}")
+list(LENGTH rows count)
+if(NOT count EQUAL 4)  # header, contour, ndt2d, wheel odometry
+  message(FATAL_ERROR "expected 4 lines in results.csv:\n${fan_csv}")
+endif()
+expect_match("${fan_csv}" "L-hokuyo-2hz,contour,98,0,")
