@@ -15,6 +15,7 @@
 #include "contour_reg/experiment/paper_experiment.h"
 #include "contour_reg/io/trajectory.h"
 #include "contour_reg/simulation/paths.h"
+#include "fan_out.h"
 #include "scenario.h"
 
 namespace contour_reg::cli {
@@ -34,6 +35,7 @@ struct ExperimentOptions {
   bool deskew = false;
   ScenarioOptions scenario;
   MethodOptions method_options;
+  FanOutOptions fan_out;
 };
 
 std::string rateName(double rate) {
@@ -143,13 +145,72 @@ void writeTables(const ExperimentOptions &options, const std::string &descriptio
   std::printf("\nwritten in %s: table.md, arrivals.csv, map.png, trajectories/\n", options.out.c_str());
 }
 
+std::string arrivalName(const experiment::Arrival &arrival) {
+  return arrival.path + "-" + rateName(arrival.rate) + "hz-a" + std::to_string(arrival.arrival);
+}
+
+// One arrival's outputs: a record of every method's numbers and, for the first arrival, the
+// trajectories its pictures show.
+fs::path arrivalFile(const ExperimentOptions &options, const experiment::Arrival &arrival, const std::string &suffix) {
+  return fs::path(options.out) / "jobs" / (arrivalName(arrival) + suffix);
+}
+
+void writeArrival(const ExperimentOptions &options, const experiment::Arrival &arrival,
+                  const std::vector<experiment::ArrivalResult> &results) {
+  fs::create_directories(fs::path(options.out) / "jobs");
+  JobRecord record;
+  for (const auto &r : results) {
+    record["path_length_m"] = r.path_length;
+    record["scans"] = double(r.scans);
+    record[r.method + ".registrations"] = double(r.registrations);
+    record[r.method + ".failures"] = double(r.failures);
+    record[r.method + ".end_point_error_m"] = r.end_point_error;
+    record[r.method + ".end_point_percent"] = r.end_point_percent;
+    record[r.method + ".median_ms"] = r.median_ms;
+    if (arrival.arrival == 0) {
+      io::writeTum(arrivalFile(options, arrival, "." + r.method + ".tum").string(), r.estimate);
+      io::writeTum(arrivalFile(options, arrival, ".gt.tum").string(), r.ground_truth);
+    }
+  }
+  writeJobRecord(arrivalFile(options, arrival, ".txt").string(), "contour_reg experiment job: " + arrivalName(arrival),
+                 record);
+}
+
+std::vector<experiment::ArrivalResult> readArrival(const ExperimentOptions &options,
+                                                   const experiment::Arrival &arrival) {
+  const std::string path = arrivalFile(options, arrival, ".txt").string();
+  const JobRecord record = readJobRecord(path, arrivalName(arrival));
+  std::vector<std::string> methods = options.methods;
+  methods.push_back(experiment::kWheelOdometry);
+  std::vector<experiment::ArrivalResult> results;
+  for (const std::string &method : methods) {
+    experiment::ArrivalResult r;
+    r.path = arrival.path;
+    r.rate = arrival.rate;
+    r.arrival = arrival.arrival;
+    r.method = method;
+    r.path_length = recordValue(record, "path_length_m", path);
+    r.scans = static_cast<std::size_t>(recordValue(record, "scans", path));
+    r.registrations = static_cast<std::size_t>(recordValue(record, method + ".registrations", path));
+    r.failures = static_cast<std::size_t>(recordValue(record, method + ".failures", path));
+    r.end_point_error = recordValue(record, method + ".end_point_error_m", path);
+    r.end_point_percent = recordValue(record, method + ".end_point_percent", path);
+    r.median_ms = recordValue(record, method + ".median_ms", path);
+    if (arrival.arrival == 0) {
+      r.estimate = io::readTum(arrivalFile(options, arrival, "." + method + ".tum").string());
+      r.ground_truth = io::readTum(arrivalFile(options, arrival, ".gt.tum").string());
+    }
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
 int runExperiment(const ExperimentOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   std::error_code error;
   fs::create_directories(fs::path(options.out) / "trajectories", error);
   if (!fs::is_directory(options.out)) throw io::ReadError(options.out + ": cannot create the output folder");
   const Scenario scenario = loadScenario(options.scenario, options.paths);
-  drawing::writeImage((fs::path(options.out) / "map.png").string(), drawing::drawWorld(scenario.world, scenario.paths));
 
   experiment::ExperimentSettings settings;
   settings.methods = options.methods;
@@ -161,12 +222,37 @@ int runExperiment(const ExperimentOptions &options) {
   settings.guess = guessSource(options.guess);
   settings.deskew = options.deskew;
   settings.jobs = options.jobs;
-  ProgressBar progress("experiment");
-  settings.progress = [&progress](std::size_t done, std::size_t all) { progress(done, all); };
+  const std::vector<experiment::Arrival> arrivals = experiment::planArrivals(scenario.paths, settings);
+  if (options.fan_out.plan) return writePlan(options.out, arrivals.size());
+  if (options.fan_out.job) {
+    if (*options.fan_out.job >= arrivals.size())
+      throw CLI::ValidationError("--job", "the plan has " + std::to_string(arrivals.size()) + " jobs (0-" +
+                                              std::to_string(arrivals.size() - 1) + ")");
+    const experiment::Arrival &arrival = arrivals[*options.fan_out.job];
+    writeArrival(options, arrival, experiment::runArrival(scenario.world, scenario.paths, settings, arrival));
+    reportFinishedJob(*options.fan_out.job + 1, arrivals.size(), arrivalName(arrival));
+    return 0;
+  }
   const std::string description = describe(options, scenario, settings);
-  std::fprintf(stderr, "%s\n", description.c_str());
-  const auto results = experiment::runExperiment(scenario.world, scenario.paths, settings);
-  progress.finish();
+  if (!options.fan_out.merge) {
+    ProgressBar progress("experiment");
+    settings.progress = [&](std::size_t done, std::size_t all) {
+      progress(done, all);
+      reportFinishedJob(done, all, "arrival");
+    };
+    std::fprintf(stderr, "%s\n", description.c_str());
+    const auto results = experiment::runExperiment(scenario.world, scenario.paths, settings);
+    progress.finish();
+    const std::size_t per_arrival = options.methods.size() + 1;
+    for (std::size_t k = 0; k < arrivals.size(); ++k)
+      writeArrival(options, arrivals[k],
+                   std::vector<experiment::ArrivalResult>(results.begin() + k * per_arrival,
+                                                          results.begin() + (k + 1) * per_arrival));
+  }
+  std::vector<experiment::ArrivalResult> results;
+  for (const experiment::Arrival &arrival : arrivals)
+    for (auto &r : readArrival(options, arrival)) results.push_back(std::move(r));
+  drawing::writeImage((fs::path(options.out) / "map.png").string(), drawing::drawWorld(scenario.world, scenario.paths));
 
   // Trajectories of the first arrival of every path and rate.
   std::map<std::pair<std::string, double>, std::map<std::string, io::Trajectory>> estimates;
@@ -208,6 +294,7 @@ void addExperimentCommand(CLI::App &app) {
                     "Deskew scans taken while moving (--motion continuous) with the motion over each scan");
   addScenarioOptions(*command, options->scenario);
   addMethodOptions(*command, options->method_options);
+  addFanOutOptions(*command, options->fan_out);
   command->callback([options]() {
     validateMethodOptions(options->method_options);
     prepareOutputFolder("--out", options->out);

@@ -10,16 +10,6 @@
 
 namespace contour_reg::experiment {
 
-namespace {
-
-struct Arrival {
-  std::string path;
-  double rate;
-  int arrival;
-};
-
-}  // namespace
-
 std::optional<double> paperMedianPercent(const std::string &path, double rate) {
   // Table 1 of the paper: median over ten arrivals, per LIDAR rotation rate.
   static const std::map<double, std::map<std::string, double>> table = {
@@ -34,66 +24,75 @@ std::optional<double> paperMedianPercent(const std::string &path, double rate) {
   return cell->second;
 }
 
-std::vector<ArrivalResult> runExperiment(const simulation::World &world,
-                                         const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
-                                         const ExperimentSettings &settings) {
+std::vector<Arrival> planArrivals(const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                                  const ExperimentSettings &settings) {
   std::vector<Arrival> arrivals;
   for (const auto &[name, waypoints] : paths)
     for (double rate : settings.rates)
       for (int a = 0; a < settings.arrivals; ++a) arrivals.push_back({name, rate, a});
-  const std::size_t per_arrival = settings.methods.size() + 1;
-  std::vector<ArrivalResult> results(arrivals.size() * per_arrival);
+  return arrivals;
+}
 
+std::vector<ArrivalResult> runArrival(const simulation::World &world,
+                                      const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                                      const ExperimentSettings &settings, const Arrival &arrival) {
+  const unsigned seed = settings.seed + static_cast<unsigned>(arrival.arrival);
+  // The arrival's own line: every waypoint shifted a little, as no robot drives one line twice.
+  std::vector<Eigen::Vector2d> waypoints = paths.at(arrival.path);
+  std::mt19937 jitter(seed * 7919u + 17u);
+  std::normal_distribution<double> shift(0.0, settings.waypoint_jitter > 0.0 ? settings.waypoint_jitter : 1.0);
+  if (settings.waypoint_jitter > 0.0)
+    for (Eigen::Vector2d &w : waypoints) w += Eigen::Vector2d(shift(jitter), shift(jitter));
+  simulation::RunSettings run_settings = settings.run;
+  run_settings.rate = arrival.rate;
+  run_settings.seed = seed;
+  const simulation::SimulatedRun run = simulation::simulateRun(world, waypoints, run_settings);
+
+  odometry::OdometryOptions options;
+  options.guess = settings.guess;
+  options.deskew = settings.deskew;
+  std::vector<ArrivalResult> results(settings.methods.size() + 1);
+  for (std::size_t m = 0; m < results.size(); ++m) {
+    ArrivalResult &result = results[m];
+    result.path = arrival.path;
+    result.rate = arrival.rate;
+    result.arrival = arrival.arrival;
+    result.path_length = run.path_length;
+    result.scans = run.log.entries.size();
+    io::Trajectory estimate;
+    if (m < settings.methods.size()) {
+      result.method = settings.methods[m];
+      const auto matcher = odometry::makeScanMatcher(result.method, settings.matcher);
+      const odometry::OdometryRun chained = odometry::runOdometry(run.log, *matcher, options);
+      estimate = chained.trajectory;
+      result.registrations = chained.stats.registrations;
+      result.failures = chained.stats.failures;
+      result.median_ms = evaluation::median(chained.stats.milliseconds);
+    } else {
+      result.method = kWheelOdometry;
+      estimate = odometry::wheelOdometry(run.log);
+    }
+    const evaluation::EndPointError error =
+        evaluation::endPointError(evaluation::associate(estimate, run.ground_truth));
+    result.end_point_error = error.error;
+    result.end_point_percent = error.percent;
+    if (arrival.arrival == 0) {
+      result.estimate = std::move(estimate);
+      result.ground_truth = run.ground_truth;
+    }
+  }
+  return results;
+}
+
+std::vector<ArrivalResult> runExperiment(const simulation::World &world,
+                                         const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                                         const ExperimentSettings &settings) {
+  const std::vector<Arrival> arrivals = planArrivals(paths, settings);
+  std::vector<std::vector<ArrivalResult>> by_arrival(arrivals.size());
   std::atomic<std::size_t> next{0}, done{0};
   auto worker = [&]() {
-    std::map<std::string, std::unique_ptr<odometry::ScanMatcher>> matchers;
-    for (const std::string &method : settings.methods)
-      matchers[method] = odometry::makeScanMatcher(method, settings.matcher);
     for (std::size_t j = next++; j < arrivals.size(); j = next++) {
-      const Arrival &arrival = arrivals[j];
-      const unsigned seed = settings.seed + static_cast<unsigned>(arrival.arrival);
-      // The arrival's own line: every waypoint shifted a little, as no robot drives one line twice.
-      std::vector<Eigen::Vector2d> waypoints = paths.at(arrival.path);
-      std::mt19937 jitter(seed * 7919u + 17u);
-      std::normal_distribution<double> shift(0.0, settings.waypoint_jitter > 0.0 ? settings.waypoint_jitter : 1.0);
-      if (settings.waypoint_jitter > 0.0)
-        for (Eigen::Vector2d &w : waypoints) w += Eigen::Vector2d(shift(jitter), shift(jitter));
-      simulation::RunSettings run_settings = settings.run;
-      run_settings.rate = arrival.rate;
-      run_settings.seed = seed;
-      const simulation::SimulatedRun run = simulation::simulateRun(world, waypoints, run_settings);
-
-      odometry::OdometryOptions options;
-      options.guess = settings.guess;
-      options.deskew = settings.deskew;
-      for (std::size_t m = 0; m < per_arrival; ++m) {
-        ArrivalResult &result = results[j * per_arrival + m];
-        result.path = arrival.path;
-        result.rate = arrival.rate;
-        result.arrival = arrival.arrival;
-        result.path_length = run.path_length;
-        result.scans = run.log.entries.size();
-        io::Trajectory estimate;
-        if (m < settings.methods.size()) {
-          result.method = settings.methods[m];
-          const odometry::OdometryRun chained = odometry::runOdometry(run.log, *matchers[result.method], options);
-          estimate = chained.trajectory;
-          result.registrations = chained.stats.registrations;
-          result.failures = chained.stats.failures;
-          result.median_ms = evaluation::median(chained.stats.milliseconds);
-        } else {
-          result.method = kWheelOdometry;
-          estimate = odometry::wheelOdometry(run.log);
-        }
-        const evaluation::EndPointError error =
-            evaluation::endPointError(evaluation::associate(estimate, run.ground_truth));
-        result.end_point_error = error.error;
-        result.end_point_percent = error.percent;
-        if (arrival.arrival == 0) {
-          result.estimate = std::move(estimate);
-          result.ground_truth = run.ground_truth;
-        }
-      }
+      by_arrival[j] = runArrival(world, paths, settings, arrivals[j]);
       const std::size_t finished = ++done;
       if (settings.progress) settings.progress(finished, arrivals.size());
     }
@@ -104,6 +103,9 @@ std::vector<ArrivalResult> runExperiment(const simulation::World &world,
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread &t : pool) t.join();
+  std::vector<ArrivalResult> results;
+  for (auto &arrival : by_arrival)
+    for (auto &result : arrival) results.push_back(std::move(result));
   return results;
 }
 

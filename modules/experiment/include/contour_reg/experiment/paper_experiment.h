@@ -58,8 +58,26 @@ struct ArrivalResult {
   io::Trajectory estimate, ground_truth;  ///< kept for the first arrival only
 };
 
-/// Runs every path x rate x arrival, each method and the wheel odometry on the same
-/// simulated scans. Results come in (path, rate, arrival, method) order.
+/// One simulated drive of the experiment: a path at a LIDAR rate, the arrival-th time.
+struct Arrival {
+  std::string path;
+  double rate = 0.0;
+  int arrival = 0;
+};
+
+/// Every arrival of the experiment, in the order runExperiment gives their results: by path
+/// (name order), rate (settings order), arrival. Each is an independent job.
+std::vector<Arrival> planArrivals(const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                                  const ExperimentSettings &settings);
+
+/// Runs one arrival: simulates its drive, then each method (settings order) and the wheel
+/// odometry on its scans. The same results whatever else runs and in whichever order.
+std::vector<ArrivalResult> runArrival(const simulation::World &world,
+                                      const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
+                                      const ExperimentSettings &settings, const Arrival &arrival);
+
+/// Runs every arrival (planArrivals), settings.jobs at a time. Results come in (path, rate,
+/// arrival, method) order.
 std::vector<ArrivalResult> runExperiment(const simulation::World &world,
                                          const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
                                          const ExperimentSettings &settings);
