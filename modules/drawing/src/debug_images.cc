@@ -311,6 +311,7 @@ cv::Scalar Palette::method(const std::string &name) {
   if (name == "contour") return {200, 120, 20};     // blue
   if (name == "contour+icp") return {0, 140, 255};  // orange
   if (name == "icp") return {40, 170, 40};          // green
+  if (name == "icp-pl") return {150, 160, 0};       // teal
   if (name == "ndt2d") return {180, 80, 150};       // purple
   if (name == "ndt") return {40, 80, 140};          // brown
   if (name == "gicp") return {190, 120, 240};       // pink

@@ -12,6 +12,7 @@
 #include "contour_reg/coarse_to_fine_registration.h"
 #include "contour_reg/contour_registration.h"
 #include "contour_reg/core/contour.h"
+#include "contour_reg/point_to_line_icp.h"
 
 namespace contour_reg::odometry {
 
@@ -35,6 +36,13 @@ Registration::Ptr makeIcp(const MatcherSettings &settings) {
   icp->setMaximumIterations(settings.icp_iterations);
   icp->setTransformationEpsilon(1e-8);
   icp->setEuclideanFitnessEpsilon(1e-8);
+  return icp;
+}
+
+Registration::Ptr makeIcpPointToLine(const MatcherSettings &settings) {
+  auto icp = pcl::make_shared<PointToLineIcp<pcl::PointXYZ, pcl::PointXYZ>>();
+  icp->setMaxCorrespondenceDistance(settings.icp_max_correspondence);
+  icp->setMaximumIterations(settings.icp_iterations);
   return icp;
 }
 
@@ -88,7 +96,7 @@ Eigen::Matrix3d toPlanar(const Eigen::Matrix4f &m) {
 }  // namespace
 
 const std::vector<std::string> &methodNames() {
-  static const std::vector<std::string> names{"contour", "icp", "ndt2d", "ndt", "gicp", "contour+icp"};
+  static const std::vector<std::string> names{"contour", "icp", "icp-pl", "ndt2d", "ndt", "gicp", "contour+icp"};
   return names;
 }
 
@@ -208,6 +216,7 @@ std::unique_ptr<ScanMatcher> makeScanMatcher(const std::string &method, const Ma
         composed->getCoarseStage().get());
   }
   if (method == "icp") return std::make_unique<ScanMatcher>(method, makeIcp(settings), false);
+  if (method == "icp-pl") return std::make_unique<ScanMatcher>(method, makeIcpPointToLine(settings), false);
   if (method == "ndt2d") return std::make_unique<ScanMatcher>(method, makeNdt2d(settings), false);
   if (method == "ndt") return std::make_unique<ScanMatcher>(method, makeNdt(settings), false);
   if (method == "gicp") return std::make_unique<ScanMatcher>(method, makeGicp(settings), false);

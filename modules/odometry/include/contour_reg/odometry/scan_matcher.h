@@ -45,13 +45,13 @@ struct MatchResult {
 struct MatcherSettings {
   ContourParams contour;
   RegistrationParams registration;
-  double icp_max_correspondence = 1.0;  ///< m, ICP and GICP
+  double icp_max_correspondence = 1.0;  ///< m, ICP, point-to-line ICP and GICP
   int icp_iterations = 50;
   double ndt_resolution = 1.0;  ///< m, NDT cell size and NDT2D grid step
   double ndt_extent = 80.0;     ///< m, NDT2D grid extent around the target origin
 };
 
-/// The method names makeScanMatcher knows: contour, icp, ndt2d, ndt, gicp, contour+icp.
+/// The method names makeScanMatcher knows: contour, icp, icp-pl (point-to-line ICP), ndt2d, ndt, gicp, contour+icp.
 const std::vector<std::string> &methodNames();
 
 /// The beam-order cloud of a scan, NaN points for invalid beams (is_dense = false); with a
