@@ -40,9 +40,9 @@ case "${1:-build}" in
   build) build ;;
   run)
     build
-    # Contour odometry against PCL ICP and NDT2D on the bundled simulated office log:
+    # Contour odometry against PCL ICP, point-to-line ICP and NDT2D on the bundled simulated office log:
     # table, CSV, trajectories and their picture in build/results/office.
-    ./build/bin/contour_reg compare data/office/L-hokuyo-2hz.clf --methods contour contour+icp icp ndt2d \
+    ./build/bin/contour_reg compare data/office/L-hokuyo-2hz.clf --methods contour contour+icp icp icp-pl ndt2d \
         --out build/results/office
     # The paper's experiment (its Table 1) on the built-in office: paths S, L, Y, O x 5, 2, 1 Hz x
     # 10 arrivals; contour, ICP and NDT2D on the same scans. Table, CSV and plots in build/results/experiment.

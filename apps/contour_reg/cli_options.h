@@ -4,6 +4,7 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -37,7 +38,8 @@ struct MethodOptions {
   double contour_step = 0.05, threshold = 0.08, local_fallback = RegistrationParams{}.local_fallback_min_overlap,
          probe_distance = RegistrationParams{}.probe_distance;
   int candidates = 3, arm_elements = 5;
-  double icp_max_correspondence = 1.0, ndt_resolution = 1.0;
+  std::optional<double> icp_max_correspondence;  // unset: each method's tuned value
+  double ndt_resolution = 1.0;
   int iterations = 50;
 
   odometry::MatcherSettings settings() const {
@@ -82,13 +84,13 @@ inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
       ->check(nonNegative());
   command
       .add_option("--icp-max-distance", options.icp_max_correspondence,
-                  "ICP/GICP: max correspondence distance (m, > 0)")
-      ->capture_default_str()
+                  "ICP/ICP-PL/GICP: max correspondence distance (m, > 0; default: each method's best on the "
+                  "relation logs, icp 0.5, icp-pl 0.25, gicp 0.5)")
       ->check(positive());
   command.add_option("--ndt-resolution", options.ndt_resolution, "NDT/NDT2D: cell size (m, >= 0.05)")
       ->capture_default_str()
       ->check(inRange(0.05, 1000.0));
-  command.add_option("--iterations", options.iterations, "ICP/GICP/NDT: max iterations (>= 1)")
+  command.add_option("--iterations", options.iterations, "ICP/ICP-PL/GICP/NDT: max iterations (>= 1)")
       ->capture_default_str()
       ->check(inRange(1, 100000));
 }

@@ -31,7 +31,7 @@ const char *kWheelOdometry = "wheel-odometry";
 
 struct CompareOptions {
   std::vector<std::string> inputs, ground_truths, relations;
-  std::vector<std::string> methods = {"contour", "contour+icp", "icp", "ndt2d"};
+  std::vector<std::string> methods = {"contour", "contour+icp", "icp", "icp-pl", "ndt2d"};
   std::string out;
   std::string guess = "zero";
   bool keyframes = false;

@@ -23,7 +23,7 @@ namespace {
 
 struct RelationsOptions {
   std::string input, relations;
-  std::vector<std::string> methods = {"contour", "contour+icp", "icp", "ndt2d"};
+  std::vector<std::string> methods = {"contour", "contour+icp", "icp", "icp-pl", "ndt2d"};
   double max_dt = 5.0, tolerance = 0.10, tolerance_deg = 2.0;
   std::size_t limit = 0;
   std::string pairs_csv;         // one row per relation and method, when set

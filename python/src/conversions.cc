@@ -56,7 +56,8 @@ odometry::MatcherSettings matcherSettings(const py::kwargs &settings) {
   }
   std::string why;
   if (!s.contour.validate(&why) || !s.registration.validate(&why)) throw py::value_error("invalid setting: " + why);
-  if (!(s.icp_max_correspondence > 0.0)) throw py::value_error("invalid setting: icp_max_distance must be > 0 m");
+  if (s.icp_max_correspondence && !(*s.icp_max_correspondence > 0.0))
+    throw py::value_error("invalid setting: icp_max_distance must be > 0 m");
   if (!(s.ndt_resolution >= 0.05)) throw py::value_error("invalid setting: ndt_resolution must be >= 0.05 m");
   if (s.icp_iterations < 1) throw py::value_error("invalid setting: iterations must be >= 1");
   return s;

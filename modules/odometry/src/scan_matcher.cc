@@ -18,6 +18,10 @@ namespace contour_reg::odometry {
 
 namespace {
 
+// Each ICP's correspondence distance at its best on the relation logs (docs/baselines.md: the
+// sweep), used unless the settings give one.
+constexpr double kIcpMaxDistance = 0.5, kIcpPlMaxDistance = 0.25, kGicpMaxDistance = 0.5;
+
 using Contour = ContourRegistration<pcl::PointXYZ, pcl::PointXYZ>;
 using CoarseToFine = CoarseToFineRegistration<pcl::PointXYZ, pcl::PointXYZ>;
 
@@ -32,7 +36,7 @@ Registration::Ptr makeIcp(const MatcherSettings &settings) {
   auto icp = pcl::make_shared<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>>();
   icp->setTransformationEstimation(
       pcl::make_shared<pcl::registration::TransformationEstimation2D<pcl::PointXYZ, pcl::PointXYZ>>());
-  icp->setMaxCorrespondenceDistance(settings.icp_max_correspondence);
+  icp->setMaxCorrespondenceDistance(settings.icp_max_correspondence.value_or(kIcpMaxDistance));
   icp->setMaximumIterations(settings.icp_iterations);
   icp->setTransformationEpsilon(1e-8);
   icp->setEuclideanFitnessEpsilon(1e-8);
@@ -41,7 +45,7 @@ Registration::Ptr makeIcp(const MatcherSettings &settings) {
 
 Registration::Ptr makeIcpPointToLine(const MatcherSettings &settings) {
   auto icp = pcl::make_shared<PointToLineIcp<pcl::PointXYZ, pcl::PointXYZ>>();
-  icp->setMaxCorrespondenceDistance(settings.icp_max_correspondence);
+  icp->setMaxCorrespondenceDistance(settings.icp_max_correspondence.value_or(kIcpPlMaxDistance));
   icp->setMaximumIterations(settings.icp_iterations);
   return icp;
 }
@@ -68,7 +72,7 @@ Registration::Ptr makeNdt(const MatcherSettings &settings) {
 
 Registration::Ptr makeGicp(const MatcherSettings &settings) {
   auto gicp = pcl::make_shared<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>>();
-  gicp->setMaxCorrespondenceDistance(settings.icp_max_correspondence);
+  gicp->setMaxCorrespondenceDistance(settings.icp_max_correspondence.value_or(kGicpMaxDistance));
   gicp->setMaximumIterations(settings.icp_iterations);
   gicp->setTransformationEpsilon(1e-8);
   return gicp;

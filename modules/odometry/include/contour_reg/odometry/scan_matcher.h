@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,9 +46,11 @@ struct MatchResult {
 struct MatcherSettings {
   ContourParams contour;
   RegistrationParams registration;
-  double icp_max_correspondence = 1.0;  ///< m, ICP, point-to-line ICP and GICP
+  /// m, the correspondence distance of ICP, point-to-line ICP and GICP; unset: each method's
+  /// best on the relation logs (docs/baselines.md): icp 0.5, icp-pl 0.25, gicp 0.5.
+  std::optional<double> icp_max_correspondence;
   int icp_iterations = 50;
-  double ndt_resolution = 1.0;  ///< m, NDT cell size and NDT2D grid step
+  double ndt_resolution = 1.0;  ///< m, NDT's cell size and NDT2D's grid step (docs/baselines.md)
   double ndt_extent = 80.0;     ///< m, NDT2D grid extent around the target origin
 };
 
