@@ -2,8 +2,6 @@
 #include <cmath>
 #include <limits>
 
-#include <pybind11/stl.h>
-
 #include "bindings.h"
 #include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"

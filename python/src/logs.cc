@@ -3,8 +3,6 @@
 #include <limits>
 #include <sstream>
 
-#include <pybind11/stl.h>
-
 #include "bindings.h"
 #include "contour_reg/io/carmen.h"
 #include "contour_reg/io/read_log.h"

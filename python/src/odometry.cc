@@ -1,8 +1,6 @@
 // odometry(): a whole log chained into a trajectory by one method, with every step's result.
 #include <sstream>
 
-#include <pybind11/stl.h>
-
 #include "bindings.h"
 #include "contour_reg/odometry/odometry.h"
 

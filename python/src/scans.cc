@@ -2,8 +2,6 @@
 #include <cmath>
 #include <sstream>
 
-#include <pybind11/stl.h>
-
 #include "bindings.h"
 #include "contour_reg/core/contour.h"
 #include "contour_reg/core/contour_features.h"

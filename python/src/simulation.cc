@@ -1,8 +1,6 @@
 // simulate(): a LIDAR log with wheel odometry and ground truth along a path through a map.
 #include <memory>
 
-#include <pybind11/stl.h>
-
 #include "bindings.h"
 #include "contour_reg/simulation/occupancy_grid.h"
 #include "contour_reg/simulation/office.h"

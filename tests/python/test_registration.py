@@ -134,3 +134,11 @@ def test_from_angles_builds_the_scan_geometry():
     assert scan.angle_min == pytest.approx(-0.1) and scan.angle_increment == pytest.approx(0.1)
     np.testing.assert_allclose(scan.points()[1], [2.0, 0.0])
     assert len(scan) == 3 and scan.stamp == 4.0
+
+
+def test_methods_lists_every_method_and_each_registers():
+    names = cr.methods()
+    assert names == ["contour", "icp", "icp-pl", "ndt2d", "ndt", "gicp", "contour+icp"]
+    scan = square_room_scan()
+    for name in names:
+        assert isinstance(cr.register(scan, scan, method=name), cr.RegistrationResult)
