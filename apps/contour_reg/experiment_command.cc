@@ -158,20 +158,17 @@ fs::path arrivalFile(const ExperimentOptions &options, const experiment::Arrival
 void writeArrival(const ExperimentOptions &options, const experiment::Arrival &arrival,
                   const std::vector<experiment::ArrivalResult> &results) {
   fs::create_directories(fs::path(options.out) / "jobs");
-  JobRecord record;
+  JobRecord record{{"path_length_m", results.front().path_length}, {"scans", double(results.front().scans)}};
   for (const auto &r : results) {
-    record["path_length_m"] = r.path_length;
-    record["scans"] = double(r.scans);
     record[r.method + ".registrations"] = double(r.registrations);
     record[r.method + ".failures"] = double(r.failures);
     record[r.method + ".end_point_error_m"] = r.end_point_error;
     record[r.method + ".end_point_percent"] = r.end_point_percent;
     record[r.method + ".median_ms"] = r.median_ms;
-    if (arrival.arrival == 0) {
-      io::writeTum(arrivalFile(options, arrival, "." + r.method + ".tum").string(), r.estimate);
-      io::writeTum(arrivalFile(options, arrival, ".gt.tum").string(), r.ground_truth);
-    }
+    if (arrival.arrival == 0) io::writeTum(arrivalFile(options, arrival, "." + r.method + ".tum").string(), r.estimate);
   }
+  if (arrival.arrival == 0)
+    io::writeTum(arrivalFile(options, arrival, ".gt.tum").string(), results.front().ground_truth);
   writeJobRecord(arrivalFile(options, arrival, ".txt").string(), "contour_reg experiment job: " + arrivalName(arrival),
                  record);
 }
@@ -182,6 +179,8 @@ std::vector<experiment::ArrivalResult> readArrival(const ExperimentOptions &opti
   const JobRecord record = readJobRecord(path, arrivalName(arrival));
   std::vector<std::string> methods = options.methods;
   methods.push_back(experiment::kWheelOdometry);
+  const io::Trajectory ground_truth =
+      arrival.arrival == 0 ? io::readTum(arrivalFile(options, arrival, ".gt.tum").string()) : io::Trajectory();
   std::vector<experiment::ArrivalResult> results;
   for (const std::string &method : methods) {
     experiment::ArrivalResult r;
@@ -198,7 +197,7 @@ std::vector<experiment::ArrivalResult> readArrival(const ExperimentOptions &opti
     r.median_ms = recordValue(record, method + ".median_ms", path);
     if (arrival.arrival == 0) {
       r.estimate = io::readTum(arrivalFile(options, arrival, "." + method + ".tum").string());
-      r.ground_truth = io::readTum(arrivalFile(options, arrival, ".gt.tum").string());
+      r.ground_truth = ground_truth;
     }
     results.push_back(std::move(r));
   }

@@ -45,7 +45,7 @@ LaserScan scanFromAngles(const py::handle &ranges, const py::handle &angles, dou
   const auto v = a.unchecked<1>();
   const double increment = (v(a.size() - 1) - v(0)) / double(a.size() - 1);
   for (py::ssize_t n = 0; n < a.size(); ++n)
-    if (!(std::abs(v(n) - (v(0) + double(n) * increment)) <= 1e-4 * std::max(1.0, std::abs(increment) * 100)))
+    if (!(std::abs(v(n) - (v(0) + double(n) * increment)) <= 0.01 * std::abs(increment)))  // 1 % of a step
       throw py::value_error("angles must be evenly spaced (beam " + std::to_string(n) +
                             " is off); give such scans as N x 2 points instead");
   LaserScan scan = makeScan(ranges, v(0), increment, stamp, range_min, range_max, time_increment);

@@ -2,6 +2,18 @@
 # single run's table, except the times; a merge before the jobs have run, and a job the plan
 # does not have, are refused naming what is missing.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test_support.cmake)
+
+# The lines of `file`, each with what matches `tail` cut off (the time columns), into `var`.
+function(read_without_times file tail var)
+  file(STRINGS ${file} lines)
+  set(text "")
+  foreach(line ${lines})
+    string(REGEX REPLACE "${tail}" "" line "${line}")
+    string(APPEND text "${line}\n")
+  endforeach()
+  set(${var} "${text}" PARENT_SCOPE)
+endfunction()
+
 set(STUDY compare ${LOG} --methods contour ndt2d)
 
 expect_run(0 ${STUDY} --out ${WORK_DIR}/single -j 1)
@@ -29,18 +41,8 @@ expect_run(0 ${STUDY} --out ${WORK_DIR}/fan --merge)
 # results.csv without its last two columns (median and p95 ms), and table.md without its
 # last two cells: the same.
 foreach(run single fan)
-  file(STRINGS ${WORK_DIR}/${run}/results.csv lines)
-  set(${run}_csv "")
-  foreach(line ${lines})
-    string(REGEX REPLACE ",[^,]*,[^,]*$" "" line "${line}")
-    string(APPEND ${run}_csv "${line}\n")
-  endforeach()
-  file(STRINGS ${WORK_DIR}/${run}/table.md lines)
-  set(${run}_table "")
-  foreach(line ${lines})
-    string(REGEX REPLACE "\\|[^|]*\\|[^|]*\\|$" "" line "${line}")
-    string(APPEND ${run}_table "${line}\n")
-  endforeach()
+  read_without_times(${WORK_DIR}/${run}/results.csv ",[^,]*,[^,]*$" ${run}_csv)
+  read_without_times(${WORK_DIR}/${run}/table.md "\\|[^|]*\\|[^|]*\\|$" ${run}_table)
 endforeach()
 if(NOT single_csv STREQUAL fan_csv OR NOT single_table STREQUAL fan_table)
   message(FATAL_ERROR "the merged table differs from the single run's:\n${single_table}\n${fan_table}")
@@ -64,12 +66,7 @@ endif()
 expect_match("${err}" "job 2/2 done: S-5hz-a1")
 expect_run(0 ${EXPERIMENT} --out ${WORK_DIR}/exp-fan --merge)
 foreach(run exp-single exp-fan)
-  file(STRINGS ${WORK_DIR}/${run}/arrivals.csv lines)
-  set(${run}_csv "")
-  foreach(line ${lines})
-    string(REGEX REPLACE ",[^,]*$" "" line "${line}")  # all but median_ms
-    string(APPEND ${run}_csv "${line}\n")
-  endforeach()
+  read_without_times(${WORK_DIR}/${run}/arrivals.csv ",[^,]*$" ${run}_csv)  # all but median_ms
 endforeach()
 if(NOT exp-single_csv STREQUAL exp-fan_csv)
   message(FATAL_ERROR "the merged arrivals differ from the single run's:\n${exp-single_csv}\n${exp-fan_csv}")

@@ -121,13 +121,17 @@ ScanMatcher::ScanMatcher(std::string name, Registration::Ptr registration, bool 
       swap_source_and_target_(std::move(swap_source_and_target)),
       contour_(contour) {}
 
-Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan, const Twist2D &twist) {
-  if (wants_beam_order_) return beamCloud(scan, twist);
+Cloud::Ptr ScanMatcher::inputFrom(const Cloud::Ptr &beams) const {
+  if (wants_beam_order_) return beams;
   auto finite = pcl::make_shared<Cloud>();  // ICP and NDT take the valid beams only
-  finite->reserve(scan.ranges.size());
-  for (const Complex &c : deskewedPolarCode(scan, twist))
-    if (isFinite(c)) finite->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
+  finite->reserve(beams->size());
+  for (const pcl::PointXYZ &p : *beams)
+    if (std::isfinite(p.x) && std::isfinite(p.y)) finite->push_back(p);
   return finite;
+}
+
+Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan, const Twist2D &twist) {
+  return inputFrom(beamCloud(scan, twist));
 }
 
 MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess,
@@ -162,14 +166,7 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
 }
 
 MatchResult ScanMatcher::match(const Cloud::Ptr &target, const Cloud::Ptr &source, const Eigen::Matrix3d &guess) {
-  const auto input = [this](const Cloud::Ptr &beams) {
-    if (wants_beam_order_) return beams;
-    auto finite = pcl::make_shared<Cloud>();
-    for (const pcl::PointXYZ &p : *beams)
-      if (std::isfinite(p.x) && std::isfinite(p.y)) finite->push_back(pcl::PointXYZ(p.x, p.y, 0.f));
-    return finite;
-  };
-  Cloud::Ptr next_target = input(target), next_source = input(source);
+  Cloud::Ptr next_target = inputFrom(target), next_source = inputFrom(source);
   const auto start = std::chrono::steady_clock::now();
   source_key_ = target_key_ = ScanKey{};  // a later scan call sets both inputs anew
   target_cloud_ = std::move(next_target);

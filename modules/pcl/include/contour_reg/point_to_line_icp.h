@@ -56,12 +56,14 @@ class PointToLineIcp : public pcl::Registration<PointSource, PointTarget, Scalar
 
  protected:
   void computeTransformation(PointCloudSource &output, const Matrix4 &guess) override {
-    if (!target_lines_) target_lines_ = withLineNormals(*this->target_);
-    const typename Cloud::Ptr source = withLineNormals(*this->input_);  // the error uses the target's normals only
+    if (!target_lines_) {  // a new target: its lines, indexed once for every source aligned to it
+      target_lines_ = withLineNormals(finitePoints(*this->target_));
+      if (target_lines_->size() >= 3) icp_->setInputTarget(target_lines_);
+    }
+    const typename Cloud::Ptr source = finitePoints(*this->input_);  // the error uses the target's normals only
     this->converged_ = false;
     this->final_transformation_ = guess;
     if (target_lines_->size() >= 3 && source->size() >= 3) {
-      icp_->setInputTarget(target_lines_);
       icp_->setInputSource(source);
       icp_->setMaximumIterations(this->max_iterations_);
       icp_->setMaxCorrespondenceDistance(std::sqrt(this->corr_dist_threshold_));
@@ -77,19 +79,25 @@ class PointToLineIcp : public pcl::Registration<PointSource, PointTarget, Scalar
   }
 
  private:
-  // The finite points, each with the normal of the line through its nearest neighbours in the
-  // plane; points too few neighbours of which are finite are left out.
+  // The finite points in the plane (z 0, normals 0).
   template <typename Point>
-  typename Cloud::Ptr withLineNormals(const pcl::PointCloud<Point> &points) const {
+  static typename Cloud::Ptr finitePoints(const pcl::PointCloud<Point> &points) {
     auto cloud = pcl::make_shared<Cloud>();
+    cloud->reserve(points.size());
     for (const Point &p : points)
       if (std::isfinite(p.x) && std::isfinite(p.y)) {
         pcl::PointNormal q;
         q.x = p.x;
         q.y = p.y;
-        q.z = 0.f;
+        q.z = q.normal_x = q.normal_y = q.normal_z = 0.f;
         cloud->push_back(q);
       }
+    return cloud;
+  }
+
+  // The points, each with the normal of the line through its nearest neighbours in the plane;
+  // all of them are left out when there are fewer points than neighbours.
+  typename Cloud::Ptr withLineNormals(const typename Cloud::Ptr &cloud) const {
     auto lines = pcl::make_shared<Cloud>();
     if (cloud->size() < static_cast<std::size_t>(neighbours_)) return lines;
     pcl::search::KdTree<pcl::PointNormal> tree;

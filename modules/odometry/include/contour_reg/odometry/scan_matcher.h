@@ -108,6 +108,8 @@ class ScanMatcher {
     return {&scan, scan.ranges.data(), scan.stamp, twist};
   }
   Cloud::Ptr cloudFor(const LaserScan &scan, const Twist2D &twist);
+  // The cloud the registration takes from a beam-order cloud: itself, or its finite points.
+  Cloud::Ptr inputFrom(const Cloud::Ptr &beams) const;
   // Aligns the inputs set from `guess`; `start` is when the registration's time began.
   MatchResult align(const Eigen::Matrix3d &guess, std::chrono::steady_clock::time_point start);
 
