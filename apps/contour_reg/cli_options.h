@@ -2,6 +2,7 @@
 // Options several subcommands share: how to read a scan source, and the settings of the
 // registration methods.
 
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -24,13 +25,29 @@ inline CLI::Validator positive() { return inRange(0.0, std::numeric_limits<doubl
 /// Numbers >= 0.
 inline CLI::Validator nonNegative() { return inRange(0.0, std::numeric_limits<double>::infinity()); }
 
-/// --max-range, --scan-topic, --odom-topic.
+/// A log's name without its folder and its log extensions (.gz, .clf, .log, .bag): where its
+/// ground truth and relations are looked for (STEM.gt.tum, STEM.relations).
+inline std::string logStem(const std::string &path) {
+  std::filesystem::path p(path);
+  while (p.has_extension() &&
+         (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" || p.extension() == ".bag"))
+    p = p.stem();
+  return p.filename().string();
+}
+
+/// --max-range, --scan-topic, --odom-topic, --scan-period.
 inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m, > 0)")
       ->capture_default_str()
       ->check(positive());
   command.add_option("--scan-topic", options.scan_topic, "Bags: sensor_msgs/LaserScan topic (default: the first)");
   command.add_option("--odom-topic", options.odometry_topic, "Bags: nav_msgs/Odometry topic (default: the first)");
+  command
+      .add_option("--scan-period", options.scan_period,
+                  "Scans without beam timing (CARMEN, PCD): s per turn of the LIDAR, beams taken in index order "
+                  "from the stamp (s, >= 0; 0: none)")
+      ->capture_default_str()
+      ->check(nonNegative());
 }
 
 /// Method settings worth studying from the command line; defaults are the library's.

@@ -35,6 +35,7 @@ struct CompareOptions {
   std::string out;
   std::string guess = "zero";
   bool keyframes = false;
+  bool deskew = true;
   unsigned jobs = 0;
   double local_dt = 5.0;
   io::LogReadOptions read;
@@ -57,19 +58,11 @@ struct Row {
   io::Trajectory trajectory;
 };
 
-std::string stemOf(const std::string &path) {
-  fs::path p(path);
-  while (p.has_extension() &&
-         (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" || p.extension() == ".bag"))
-    p = p.stem();
-  return p.filename().string();
-}
-
 // A reference given on the command line (by position), or one found beside the input.
 std::string reference(const std::vector<std::string> &given, std::size_t k, const std::string &input,
                       const std::string &suffix) {
   if (k < given.size()) return given[k];
-  const fs::path beside = fs::path(input).parent_path() / (stemOf(input) + suffix);
+  const fs::path beside = fs::path(input).parent_path() / (logStem(input) + suffix);
   return fs::exists(beside) ? beside.string() : std::string();
 }
 
@@ -153,7 +146,7 @@ std::vector<Job> planJobs(const CompareOptions &options) {
 
 Input loadInput(const CompareOptions &options, std::size_t k) {
   Input input;
-  input.name = stemOf(options.inputs[k]);
+  input.name = logStem(options.inputs[k]);
   input.log = io::readLog(options.inputs[k], options.read);
   printReadReport(input.log);
   if (const std::string gt = reference(options.ground_truths, k, options.inputs[k], ".gt.tum"); !gt.empty())
@@ -180,6 +173,7 @@ void runJob(const CompareOptions &options, const Input &input, const std::string
   odometry::OdometryOptions run_options;
   run_options.guess = guessSource(options.guess);
   run_options.keyframes = options.keyframes;
+  run_options.deskew = options.deskew;
   run_options.progress = progress;
   const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
   io::writeTum(trajectoryPath(options, input.name, method), run.trajectory);
@@ -250,7 +244,7 @@ int runCompare(const CompareOptions &options) {
   if (options.fan_out.job) {
     const Job &job = jobs[*options.fan_out.job];
     runJob(options, loadInput(options, job.input), job.method, {});
-    reportFinishedJob(*options.fan_out.job + 1, jobs.size(), stemOf(options.inputs[job.input]) + " " + job.method);
+    reportFinishedJob(*options.fan_out.job + 1, jobs.size(), logStem(options.inputs[job.input]) + " " + job.method);
     return 0;
   }
   std::vector<Input> inputs;
@@ -325,6 +319,9 @@ void addCompareCommand(CLI::App &app) {
   command->add_option("--out", options->out, "Output folder")->required();
   addGuessOption(*command, options->guess);
   command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
+  command->add_flag("--deskew,!--no-deskew", options->deskew,
+                    "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
+                    "the log has it (on by default)");
   command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");
   command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")
       ->capture_default_str()

@@ -32,7 +32,7 @@ struct ExperimentOptions {
   int arrivals = 10;
   unsigned seed = 1, jobs = 0;
   std::string guess = "zero";
-  bool deskew = false;
+  bool deskew = true;
   ScenarioOptions scenario;
   MethodOptions method_options;
   FanOutOptions fan_out;
@@ -289,8 +289,9 @@ void addExperimentCommand(CLI::App &app) {
   command->add_option("--seed", options->seed, "Seed of the first arrival")->capture_default_str();
   command->add_option("--jobs,-j", options->jobs, "Parallel arrivals (default: one per core)");
   addGuessOption(*command, options->guess);
-  command->add_flag("--deskew", options->deskew,
-                    "Deskew scans taken while moving (--motion continuous) with the motion over each scan");
+  command->add_flag("--deskew,!--no-deskew", options->deskew,
+                    "Deskew scans taken while moving (--motion continuous) with the motion over each scan, by "
+                    "wheel odometry (on by default)");
   addScenarioOptions(*command, options->scenario);
   addMethodOptions(*command, options->method_options);
   addFanOutOptions(*command, options->fan_out);

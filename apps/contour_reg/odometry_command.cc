@@ -18,7 +18,7 @@ namespace {
 
 struct OdometryCommandOptions {
   std::string input, output, method = "contour", guess = "zero";
-  bool odom_guess = false, keyframes = false, deskew = false;
+  bool odom_guess = false, keyframes = false, deskew = true;
   std::string debug_dir, covariance;
   std::size_t debug_every = 0;
   double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
@@ -94,8 +94,9 @@ void addOdometryCommand(CLI::App &app) {
   addGuessOption(*command, options->guess);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
   command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
-  command->add_flag("--deskew", options->deskew,
-                    "Deskew scans that carry beam timing with the motion over each scan (docs/algorithm.md)");
+  command->add_flag("--deskew,!--no-deskew", options->deskew,
+                    "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
+                    "the log has it (on by default; docs/algorithm.md)");
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
       ->capture_default_str()
       ->check(nonNegative());

@@ -6,6 +6,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "contour_reg/io/carmen.h"
+#include "contour_reg/io/rosbag.h"
 #include "contour_reg/io/trajectory.h"
 #include "scenario.h"
 
@@ -25,7 +26,10 @@ int runSimulate(const SimulateOptions &options) {
   const auto &waypoints = scenario.paths.at(options.path);
   const simulation::RunSettings settings = runSettings(options.scenario, options.rate, options.seed);
   const simulation::SimulatedRun run = simulation::simulateRun(scenario.world, waypoints, settings);
-  io::writeCarmen(options.output, run.log);
+  if (std::filesystem::path(options.output).extension() == ".bag")
+    io::writeRosbag(options.output, run.log);
+  else
+    io::writeCarmen(options.output, run.log);
   io::writeTum(options.ground_truth, run.ground_truth);
   std::fprintf(stderr, "simulated %zu scans along path %s (%.1f m) in %s with %s, %s\n", run.log.entries.size(),
                options.path.c_str(), run.path_length, scenario.map_name.c_str(), settings.lidar.name.c_str(),
@@ -39,7 +43,10 @@ int runSimulate(const SimulateOptions &options) {
 void addSimulateCommand(CLI::App &app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App *command = app.add_subcommand("simulate", "Simulate a LIDAR log along a path through a map");
-  command->add_option("--output,-o,--out", options->output, "CARMEN log to write (a file, as odometry's --output)")
+  command
+      ->add_option("--output,-o,--out", options->output,
+                   "Log to write: a ROS 1 bag (.bag: /scan with the beam timing of --motion continuous, "
+                   "/odom) or a CARMEN log (any other name)")
       ->required();
   command->add_option("--gt", options->ground_truth,
                       "TUM ground truth to write (default: OUTPUT_STEM.gt.tum beside the log, where compare finds it)");
@@ -53,9 +60,8 @@ void addSimulateCommand(CLI::App &app) {
   command->callback([options]() {
     checkOutputFile("--output", options->output);
     if (options->ground_truth.empty()) {
-      std::filesystem::path gt(options->output);
-      while (gt.extension() == ".gz" || gt.extension() == ".clf" || gt.extension() == ".log") gt.replace_extension();
-      options->ground_truth = gt.string() + ".gt.tum";
+      const std::filesystem::path output(options->output);
+      options->ground_truth = (output.parent_path() / (logStem(options->output) + ".gt.tum")).string();
     }
     checkOutputFile("--gt", options->ground_truth);
     runCommand([&] { return runSimulate(*options); });

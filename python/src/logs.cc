@@ -99,8 +99,11 @@ void bindLogs(py::module_ &m) {
 
   m.def(
       "read_log",
-      [](const std::string &path, double max_range, const std::string &scan_topic, const std::string &odom_topic) {
+      [](const std::string &path, double max_range, const std::string &scan_topic, const std::string &odom_topic,
+         double scan_period) {
+        if (!(scan_period >= 0.0)) throw py::value_error("scan_period must be >= 0 s");
         io::LogReadOptions options;
+        options.scan_period = scan_period;
         options.max_range = max_range;
         options.scan_topic = scan_topic;
         options.odometry_topic = odom_topic;
@@ -108,9 +111,10 @@ void bindLogs(py::module_ &m) {
         return io::readLog(path, options);
       },
       py::arg("path"), py::arg("max_range") = io::LogReadOptions{}.max_range, py::arg("scan_topic") = "",
-      py::arg("odom_topic") = "",
+      py::arg("odom_topic") = "", py::arg("scan_period") = 0.0,
       "Reads a CARMEN log (plain or gzip), a ROS 1 bag or a folder of PCD scans. Readings at or above max_range (m) "
-      "are no-return; bags: the LaserScan and Odometry topics ('' : the first). Raises ReadError naming the file "
+      "are no-return; bags: the LaserScan and Odometry topics ('' : the first); scan_period: s per LIDAR turn for "
+      "scans without beam timing (beams in index order from the stamp; 0: none). Raises ReadError naming the file "
       "(and line) when it cannot be used; bad lines it can skip are counted in Log.skipped.");
   m.def(
       "write_carmen", [](const std::string &path, const io::ScanLog &log) { io::writeCarmen(path, log); },

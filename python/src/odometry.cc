@@ -70,11 +70,12 @@ void bindOdometry(py::module_ &m) {
       });
 
   m.def("odometry", &runOdometry, py::arg("log"), py::arg("method") = "contour", py::arg("guess") = "zero",
-        py::arg("keyframes") = false, py::arg("deskew") = false,
+        py::arg("keyframes") = false, py::arg("deskew") = true,
         "Laser odometry over a Log with `method` (see methods()): each scan registered against the previous one "
         "(or the last keyframe), from a guess of 'zero', 'odom' (the log's wheel odometry) or 'velocity'. A failed "
         "registration is retried from the constant-velocity prediction, then bridged. deskew: scans with beam "
-        "timing are deskewed by the motion over them. Keyword settings as register(). Releases the GIL.");
+        "timing are deskewed by the motion over each (the wheel odometry when the log has it). Keyword settings as "
+        "register(). Releases the GIL.");
 }
 
 }  // namespace contour_reg::python

@@ -36,6 +36,19 @@ TEST(Carmen, FlaserGivesBeamGeometryRangesOdometryAndStamp) {
   EXPECT_DOUBLE_EQ(log.entries[0].odometry->y, 2.0);
 }
 
+// CARMEN lines carry no beam timing; a scan period gives it: 180 beams of 1 deg at 10 Hz are
+// 1/3600 s apart. Without one the scans stay untimed.
+TEST(Carmen, AScanPeriodGivesBeamTiming) {
+  TempDir dir;
+  const auto path = dir.write("a.clf", flaser(180, 2.5, 1.0, 2.0, 0.5, 10.0));
+  EXPECT_EQ(readLog(path).entries.at(0).scan.time_increment, 0.0);
+  LogReadOptions options;
+  options.scan_period = 0.1;
+  const LaserScan scan = readLog(path, options).entries.at(0).scan;
+  EXPECT_NEAR(scan.time_increment, 0.1 / 360.0, 1e-12);
+  EXPECT_DOUBLE_EQ(scan.stamp, 10.0);
+}
+
 TEST(Carmen, ReadingsAtMaxRangeAreNoReturn) {
   TempDir dir;
   const ScanLog log = readCarmen(dir.write("a.clf", flaser(4, 81.83, 0, 0, 0, 1.0)));

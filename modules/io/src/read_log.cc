@@ -1,5 +1,6 @@
 #include "contour_reg/io/read_log.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "contour_reg/io/carmen.h"
@@ -8,7 +9,9 @@
 
 namespace contour_reg::io {
 
-ScanLog readLog(const std::string &path, const LogReadOptions &options) {
+namespace {
+
+ScanLog readAny(const std::string &path, const LogReadOptions &options) {
   namespace fs = std::filesystem;
   std::error_code error;
   if (fs::is_directory(path, error)) return readPcdFolder(path, options.max_range);
@@ -24,6 +27,17 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
   carmen.max_range = options.max_range;
   carmen.max_beams = options.max_beams;
   return readCarmen(path, carmen);
+}
+
+}  // namespace
+
+ScanLog readLog(const std::string &path, const LogReadOptions &options) {
+  ScanLog log = readAny(path, options);
+  if (options.scan_period > 0.0)
+    for (LogEntry &entry : log.entries)
+      if (entry.scan.time_increment == 0.0)
+        entry.scan.time_increment = options.scan_period * std::abs(entry.scan.angle_increment) / (2.0 * M_PI);
+  return log;
 }
 
 }  // namespace contour_reg::io

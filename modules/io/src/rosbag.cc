@@ -1,6 +1,8 @@
 #include "contour_reg/io/rosbag.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "log_assembly.h"
@@ -37,10 +39,23 @@ LogEntry toEntry(const sensor_msgs::LaserScan &message, double max_range) {
   scan.angle_increment = message.angle_increment;
   scan.range_min = std::max(0.0f, message.range_min);
   scan.range_max = message.range_max > 0.0f ? std::min<double>(message.range_max, max_range) : max_range;
+  scan.time_increment = message.time_increment;
   scan.ranges.resize(message.ranges.size());
   for (std::size_t n = 0; n < message.ranges.size(); ++n)
     scan.ranges[n] = scan.isValidRange(message.ranges[n]) ? message.ranges[n] : std::numeric_limits<float>::quiet_NaN();
   return entry;
+}
+
+// Why the message's beam timing cannot be used (empty when it can): beams are taken in
+// index order, time_increment apart, and the sweep fits in the scan period (scan_time).
+std::string beamTimingProblem(const sensor_msgs::LaserScan &message) {
+  const double increment = message.time_increment, period = message.scan_time;
+  if (!std::isfinite(increment) || increment < 0.0)
+    return "time_increment " + std::to_string(increment) + " s is not a beam interval >= 0";
+  const double sweep = increment * static_cast<double>(message.ranges.size() - 1);
+  if (std::isfinite(period) && period > 0.0 && sweep > 1.01 * period)
+    return "the sweep (" + std::to_string(sweep) + " s) is longer than scan_time (" + std::to_string(period) + " s)";
+  return {};
 }
 
 }  // namespace
@@ -78,6 +93,11 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
             log.report.add(where, index, "bad beam geometry");
           } else {
             log.entries.push_back(toEntry(*scan, options.max_range));
+            const std::string timing = beamTimingProblem(*scan);
+            if (!timing.empty()) {
+              log.report.add(where, index, timing + ": the scan is read without beam timing");
+              log.entries.back().scan.time_increment = 0.0;
+            }
           }
         } else if (auto odom = message.instantiate<nav_msgs::Odometry>()) {
           const auto &pose = odom->pose.pose;
@@ -103,6 +123,54 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   return log;
 }
 
+void writeRosbag(const std::string &path, const ScanLog &log) {
+  try {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    std::uint32_t sequence = 0;
+    for (const LogEntry &entry : log.entries) {
+      const LaserScan &scan = entry.scan;
+      // A bag's record time must be after its epoch; the header keeps the scan's own stamp.
+      const ros::Time stamp(std::max(scan.stamp, 0.0));
+      const ros::Time recorded = std::max(stamp, ros::TIME_MIN);
+      sensor_msgs::LaserScan message;
+      message.header.seq = sequence++;
+      message.header.stamp = stamp;
+      message.header.frame_id = "laser";
+      message.angle_min = static_cast<float>(scan.angle_min);
+      message.angle_increment = static_cast<float>(scan.angle_increment);
+      message.angle_max = static_cast<float>(scan.bearing(scan.ranges.empty() ? 0 : scan.ranges.size() - 1));
+      message.time_increment = static_cast<float>(scan.time_increment);
+      // A spinning LIDAR's period: one turn of beams (0 without timing).
+      message.scan_time = static_cast<float>(scan.time_increment * 2.0 * M_PI / std::abs(scan.angle_increment));
+      message.range_min = static_cast<float>(scan.range_min);
+      float farthest = 0.0f;
+      message.ranges.resize(scan.ranges.size());
+      for (std::size_t n = 0; n < scan.ranges.size(); ++n) {
+        const bool valid = scan.isValidRange(scan.ranges[n]);
+        message.ranges[n] = valid ? scan.ranges[n] : std::numeric_limits<float>::infinity();
+        if (valid) farthest = std::max(farthest, scan.ranges[n]);
+      }
+      message.range_max = scan.range_max > 0.0 ? static_cast<float>(scan.range_max) : std::nextafter(farthest, 1e9f);
+      bag.write("/scan", recorded, message);
+      if (entry.odometry) {
+        nav_msgs::Odometry odometry;
+        odometry.header.seq = message.header.seq;
+        odometry.header.stamp = stamp;
+        odometry.header.frame_id = "odom";
+        odometry.child_frame_id = "base_link";
+        odometry.pose.pose.position.x = entry.odometry->x;
+        odometry.pose.pose.position.y = entry.odometry->y;
+        odometry.pose.pose.orientation.z = std::sin(0.5 * entry.odometry->yaw);
+        odometry.pose.pose.orientation.w = std::cos(0.5 * entry.odometry->yaw);
+        bag.write("/odom", recorded, odometry);
+      }
+    }
+    bag.close();
+  } catch (const std::exception &error) {
+    throw ReadError(path + ": cannot write the bag: " + error.what());
+  }
+}
+
 #else
 
 bool rosbagSupported() { return false; }
@@ -110,6 +178,12 @@ bool rosbagSupported() { return false; }
 ScanLog readRosbag(const std::string &path, const RosbagOptions &) {
   throw ReadError(path +
                   ": this build of contour_reg cannot read ROS bags (install librosbag-storage-dev, "
+                  "libsensor-msgs-dev and libnav-msgs-dev, then rebuild)");
+}
+
+void writeRosbag(const std::string &path, const ScanLog &) {
+  throw ReadError(path +
+                  ": this build of contour_reg cannot write ROS bags (install librosbag-storage-dev, "
                   "libsensor-msgs-dev and libnav-msgs-dev, then rebuild)");
 }
 

@@ -64,7 +64,15 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
 
     const io::Pose2D guess = between(poses[reference], expected);
     const bool deskewing = options.deskew && entries[k].scan.time_increment > 0.0;
-    if (deskewing && velocity_dt > 1e-3) twists[k] = twistOver(velocity_motion, velocity_dt);
+    // The motion over this scan's sweep: the wheel odometry from its stamp to the next scan's
+    // (the interval its sweep lies in) when the log has it, else the last motion.
+    const auto wheel_over_sweep = k + 1 < entries.size() ? wheelMotion(entries[k], entries[k + 1]) : std::nullopt;
+    const double sweep_dt = k + 1 < entries.size() ? entries[k + 1].scan.stamp - entries[k].scan.stamp : 0.0;
+    const bool by_wheel = deskewing && wheel_over_sweep && sweep_dt > 1e-3;
+    if (by_wheel)
+      twists[k] = twistOver(*wheel_over_sweep, sweep_dt);
+    else if (deskewing && velocity_dt > 1e-3)
+      twists[k] = twistOver(velocity_motion, velocity_dt);
     MatchResult match =
         matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess), twists[reference], twists[k]);
     // A failure gets a second try from the constant-velocity prediction when that is a
@@ -82,8 +90,9 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       }
       match.milliseconds = first_ms + retry.milliseconds;
     }
-    // Deskewed with the motion this registration found over the interval, rather than the last one.
-    if (deskewing && match.converged && dt > 1e-3 && reference == k - 1) {
+    // Without wheel odometry: deskewed again with the motion this registration found over the
+    // interval, rather than the last one.
+    if (deskewing && !by_wheel && match.converged && dt > 1e-3 && reference == k - 1) {
       const Twist2D better = twistOver(toPose(match.transform), dt);
       const MatchResult again =
           matcher.match(entries[reference].scan, entries[k].scan, match.transform, twists[reference], better);

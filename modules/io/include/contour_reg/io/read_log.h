@@ -14,9 +14,15 @@ struct LogReadOptions {
   std::size_t max_beams = 100000;  ///< scans announcing more beams are rejected
   std::string scan_topic;          ///< bags: sensor_msgs/LaserScan topic ("": the first one)
   std::string odometry_topic;      ///< bags: nav_msgs/Odometry topic ("": the first one)
+  /// s per turn of a spinning LIDAR, for scans that carry no beam timing of their own (CARMEN
+  /// lines and PCD files never do): beams are then taken in index order (counter-clockwise,
+  /// as sensor_msgs orders them) scan_period * angle_increment / 2 pi apart, the first at the
+  /// scan's stamp (LaserScan::time_increment). 0: no timing.
+  double scan_period = 0.0;
 };
 
-/// Reads `path` with the reader its kind calls for. Throws ReadError naming the file.
+/// Reads `path` with the reader its kind calls for, then gives scans without beam timing
+/// the timing of `scan_period`. Throws ReadError naming the file.
 ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
 
 }  // namespace contour_reg::io

@@ -4,8 +4,11 @@
 /// nav_msgs/Odometry messages, read through Debian's rosbag_storage library.
 ///
 /// A scan's stamp is its header stamp; its odometry is the Odometry pose interpolated at
-/// that stamp. Ranges outside [range_min, min(range_max, max_range)) become NaN. A message
-/// that cannot be decoded is skipped and reported with its topic and index.
+/// that stamp. Ranges outside [range_min, min(range_max, max_range)) become NaN. The beam
+/// timing is the message's time_increment (LaserScan::time_increment; sensor_msgs' stamp is
+/// the first beam's time); a negative one, or one whose sweep is longer than scan_time, is
+/// reported and the scan read without timing. A message that cannot be decoded is skipped
+/// and reported with its topic and index.
 
 #include <string>
 
@@ -26,5 +29,13 @@ bool rosbagSupported();
 /// Reads the scans and odometry of a bag. Throws ReadError naming the file when it
 /// cannot be opened or decoded, has no scan topic, or this build cannot read bags.
 ScanLog readRosbag(const std::string &path, const RosbagOptions &options = {});
+
+/// Writes the log as a ROS 1 bag the way a LIDAR driver and a robot base record one: every
+/// scan a sensor_msgs/LaserScan on /scan (frame "laser"; stamp = first beam, time_increment
+/// and scan_time = one turn of the LIDAR, range_max the largest finite range; invalid beams +inf), and
+/// every odometry pose a nav_msgs/Odometry on /odom ("odom" -> "base_link") at the scan's
+/// stamp. Throws ReadError naming the file when it cannot be written or this build has no
+/// bag support.
+void writeRosbag(const std::string &path, const ScanLog &log);
 
 }  // namespace contour_reg::io

@@ -35,11 +35,12 @@ struct OdometryOptions {
   /// treated as failed: bridged, not chained, and counted.
   bool reject_degenerate = true;
   /// Scans that carry beam timing (LaserScan::time_increment) are deskewed (deskew.h) with the
-  /// constant-velocity prediction of the motion over them (the previous motion over its
-  /// interval), registered, then deskewed with the motion that registration found and
-  /// registered again (scan to scan only). Off by default: on the simulated continuous runs
-  /// it helps at 5 Hz and hurts some 2 Hz cells (docs/experiment.md).
-  bool deskew = false;
+  /// motion over their sweep as a constant twist: the wheel odometry from the scan's stamp to
+  /// the next scan's when the log has it; otherwise the constant-velocity prediction (the
+  /// previous motion over its interval), then, once registered, the motion that registration
+  /// found, and registered again (scan to scan only). Scans without beam timing are left as
+  /// they are. Simulated continuous runs: docs/experiment.md.
+  bool deskew = true;
   /// Called after every scan with (scans done, scans in all).
   std::function<void(std::size_t, std::size_t)> progress;
   /// Called after every registration with (reference scan index, scan index, result).
