@@ -15,8 +15,9 @@ class DebugDumper {
   DebugDumper(std::string folder, odometry::MatcherSettings settings)
       : folder_(std::move(folder)), settings_(std::move(settings)) {}
 
-  /// Writes scan_<source>.png, pair_<target>_<source>.png and, with methods,
-  /// methods_<target>_<source>.png; returns the files written.
+  /// Writes scan_<source>.png, pair_<target>_<source>.png, for a source with beam timing
+  /// deskew_<source>.png (raw and deskewed), and, with methods, methods_<target>_<source>.png;
+  /// returns the files written.
   std::vector<std::string> dumpPair(const io::ScanLog &log, std::size_t target, std::size_t source,
                                     const std::vector<std::string> &methods = {}) const;
 

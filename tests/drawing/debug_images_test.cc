@@ -58,6 +58,21 @@ TEST(DebugImages, AScanWithoutSpecialPointsSaysSo) {
   EXPECT_GT(countColour(image, {150, 150, 150}), 50);                                 // the raw points are drawn
 }
 
+// The raw scan (grey) shows beside the deskewed one only when the motion moved its beams.
+TEST(DebugImages, DeskewImageShowsTheRawScanWhereTheMotionMovedIt) {
+  const test::RoomWithBoxes room;
+  LaserScan scan = test::scanFrom(room.world, test::pose2d(0.0, 0.0, 0.0));
+  scan.time_increment = 1e-4;
+  const cv::Rect points_only(0, 100, 1200, 900 - 100 - 80);  // below the text, above the legend
+  const cv::Scalar grey(150, 150, 150);
+  const cv::Mat still = drawDeskew(scan, Twist2D{}, "still");
+  EXPECT_EQ(still.rows, 900);
+  EXPECT_GT(countColour(still(points_only), Palette::source()), 500);
+  EXPECT_EQ(countColour(still(points_only), grey), 0);  // the deskewed points cover the raw ones
+  const cv::Mat moving = drawDeskew(scan, Twist2D{1.0, 0.0, 1.0}, "moving");
+  EXPECT_GT(countColour(moving(points_only), grey), 300);
+}
+
 TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
   const simulation::World world = simulation::makeFurnishedRoom();
   const LaserScan a = test::scanFrom(world, test::pose2d(0, 0, 0)),

@@ -104,6 +104,40 @@ View View::fit(const std::vector<Eigen::Vector2d> &points, int width, int height
   return view;
 }
 
+cv::Mat drawDeskew(const LaserScan &scan, const Twist2D &twist, const std::string &title, int width) {
+  const int height = width * 3 / 4;
+  cv::Mat image(height, width, CV_8UC3, kWhite);
+  const ComplexSequence raw = polarCode(scan), deskewed = deskewedPolarCode(scan, twist);
+  std::vector<Eigen::Vector2d> raw_points, deskewed_points;
+  double largest_shift = 0.0;
+  for (std::size_t n = 0; n < raw.size() && n < deskewed.size(); ++n) {
+    if (!isFinite(raw[n]) || !isFinite(deskewed[n])) continue;
+    raw_points.push_back(toEigen(raw[n]));
+    deskewed_points.push_back(toEigen(deskewed[n]));
+    largest_shift = std::max(largest_shift, std::abs(deskewed[n] - raw[n]));
+  }
+  std::vector<Eigen::Vector2d> all = raw_points;
+  all.insert(all.end(), deskewed_points.begin(), deskewed_points.end());
+  const View view = View::fit(all, width, height);
+  drawPoints(image, view, raw_points, kRawPoint, 2);
+  drawPoints(image, view, deskewed_points, Palette::source(), 2);
+  decorate(image, view);
+  text(image, title, {15, 30}, 0.8);
+  char summary[200];
+  const double sweep = scan.time_increment * static_cast<double>(scan.ranges.empty() ? 0 : scan.ranges.size() - 1);
+  std::snprintf(summary, sizeof summary,
+                "motion over the sweep: %.2f m/s forward, %.2f m/s left, %.1f deg/s; sweep %.3f s; largest beam "
+                "shift %.3f m",
+                twist.vx, twist.vy, twist.wz * 180.0 / M_PI, sweep, largest_shift);
+  text(image, summary, {15, 58});
+  if (scan.time_increment == 0.0)
+    text(image, "NO BEAM TIMING: the scan is taken as if all at once", {15, 88}, 0.7, Palette::warning());
+  legend(image,
+         {{"raw (each beam where the sensor was then)", kRawPoint}, {"deskewed (all at the stamp)", Palette::source()}},
+         {15, height - 60});
+  return image;
+}
+
 cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const ContourParams &params,
                  const std::string &title, int width) {
   const int panel_height = width * 3 / 4, strip_height = width / 5;

@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/deskew.h"
 #include "contour_reg/core/laser_scan.h"
 #include "contour_reg/core/registration.h"
 #include "contour_reg/io/trajectory.h"
@@ -51,6 +52,11 @@ struct View {
 /// matched-filter response along the contours with the threshold and the maxima.
 cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const ContourParams &params,
                  const std::string &title, int width = 1200);
+
+/// A scan taken while moving (LaserScan::time_increment), raw (grey) and deskewed by `twist`
+/// (deskew.h; orange) over each other in the frame of the sensor at the stamp, with the twist,
+/// the sweep's duration and the largest shift of a beam.
+cv::Mat drawDeskew(const LaserScan &scan, const Twist2D &twist, const std::string &title, int width = 1200);
 
 /// One pair: left, both scans in their own frames with special points, candidate pairs
 /// (grey), RANSAC inliers (green) and outliers (red); right, the source moved onto the
