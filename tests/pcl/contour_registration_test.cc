@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <pcl/console/print.h>
@@ -12,6 +13,7 @@
 #include <pcl/registration/ndt_2d.h>
 #include <pcl/registration/transformation_estimation_2D.h>
 
+#include "contour_reg/core/deskew.h"
 #include "contour_reg/core/transform_estimation.h"
 #include "scenes.h"
 
@@ -125,6 +127,61 @@ TEST(ContourRegistration, StandsWhereIcpAndNdtStand) {
 
 // The odometry step: swap, set the next scan as source, align. Each scan's special points
 // are extracted once: the target's are those extracted from it as the source of the step before.
+// Two scans of the room by a 5 Hz LIDAR on a robot driving 1 m/s and turning 1 rad/s without
+// stopping: each sweep spans 0.15 m and 9 deg. The truth maps the sensor at the source's first
+// beam into the sensor at the target's.
+TEST(ContourRegistration, ASweepDeskewsScansTakenWhileMoving) {
+  const test::RoomWithBoxes room;
+  const Twist2D twist{1.0, 0.0, 1.0};
+  const double period = 0.2;
+  simulation::LidarModel lidar = simulation::LidarModel::hokuyoUtm30lx();
+  lidar.range_noise = 0.005;
+  const double time_increment = lidar.angleIncrement() / (2.0 * M_PI) * period;
+  auto motion = [&](double t) {
+    Complex position;
+    double heading = 0.0;
+    integrateTwist(twist, t, position, heading);
+    return test::pose2d(position.real(), position.imag(), heading * 180.0 / M_PI);
+  };
+  std::mt19937 rng(7);
+  const Eigen::Isometry2d start = test::pose2d(-2.0, -0.5, 10.0);
+  auto swept = [&](const Eigen::Isometry2d &first_beam) {
+    return simulation::simulateScan(
+        room.world, [&](std::size_t n) { return first_beam * motion(time_increment * static_cast<double>(n)); }, lidar,
+        rng);
+  };
+  const LaserScan target = swept(start), source = swept(start * motion(period));
+  const Eigen::Isometry2d truth = motion(period);
+
+  ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
+  registration.setInputTarget(toCloud(target));
+  registration.setInputSource(toCloud(source));
+  auto error = [&] {
+    Cloud aligned;
+    registration.align(aligned);
+    const Eigen::Matrix4f found = registration.getFinalTransformation();
+    const double yaw = std::atan2(found(1, 0), found(0, 0));
+    const Eigen::Rotation2Dd true_turn(truth.linear());
+    return std::make_pair(std::hypot(found(0, 3) - truth.translation().x(), found(1, 3) - truth.translation().y()),
+                          std::abs(std::remainder(yaw - true_turn.angle(), 2 * M_PI)) * 180.0 / M_PI);
+  };
+  const auto raw = error();
+  const bool raw_converged = registration.hasConverged();
+  registration.setSourceSweep(Sweep{time_increment, twist});
+  registration.setTargetSweep(Sweep{time_increment, twist});
+  const auto deskewed = error();
+  ASSERT_TRUE(registration.hasConverged()) << registration.getFailureReason();
+  EXPECT_LT(deskewed.first, 0.003);  // m
+  EXPECT_LT(deskewed.second, 0.1);   // deg
+  if (raw_converged) {
+    EXPECT_GT(raw.second, 0.2);  // the bent scans turn the answer
+  }
+  // Back to scans taken at once: the same answer as before.
+  registration.setSourceSweep(Sweep{});
+  registration.setTargetSweep(Sweep{});
+  EXPECT_EQ(error(), raw);
+}
+
 TEST(ContourRegistration, SwapReusesTheLastSourcesFeaturesAsTarget) {
   const simulation::World world = simulation::makeFurnishedRoom();
   ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;

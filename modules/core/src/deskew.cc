@@ -16,16 +16,20 @@ void integrateTwist(const Twist2D &twist, double t, Complex &position, double &h
   position = Complex(a, b) * Complex(twist.vx, twist.vy);
 }
 
-void deskewedPolarCode(const LaserScan &scan, const Twist2D &twist, ComplexSequence &code) {
-  polarCode(scan, code);
-  if (scan.time_increment == 0.0 || (twist.vx == 0.0 && twist.vy == 0.0 && twist.wz == 0.0)) return;
+void deskewPolarCode(ComplexSequence &code, const Sweep &sweep) {
+  if (!sweep.moving()) return;
   for (std::size_t n = 0; n < code.size(); ++n) {
     if (!isFinite(code[n])) continue;
     Complex position;
     double heading = 0.0;
-    integrateTwist(twist, scan.time_increment * static_cast<double>(n), position, heading);
+    integrateTwist(sweep.twist, sweep.time_increment * static_cast<double>(n), position, heading);
     code[n] = position + std::polar(1.0, heading) * code[n];
   }
+}
+
+void deskewedPolarCode(const LaserScan &scan, const Twist2D &twist, ComplexSequence &code) {
+  polarCode(scan, code);
+  deskewPolarCode(code, Sweep{scan.time_increment, twist});
 }
 
 ComplexSequence deskewedPolarCode(const LaserScan &scan, const Twist2D &twist) {

@@ -16,6 +16,7 @@
 #include <pcl/types.h>
 
 #include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/deskew.h"
 #include "contour_reg/core/special_points.h"
 #include "contour_reg/core/types.h"
 #include "contour_reg/point_types.h"
@@ -31,10 +32,12 @@ void sortByBearing(ComplexSequence &points, std::vector<int> *order = nullptr);
 
 /// The polar code of a cloud (or of the points named by `indices`, in that order), into
 /// `code`, reusing its buffer. With `order`, order[n] is the position in the cloud (or in
-/// `indices`) of code point n.
+/// `indices`) of code point n. With a moving `sweep`, the points, taken in cloud order, are
+/// deskewed (deskew.h) before any sort by bearing.
 template <typename PointT>
 void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &code,
-                        const pcl::Indices *indices = nullptr, std::vector<int> *order = nullptr) {
+                        const pcl::Indices *indices = nullptr, std::vector<int> *order = nullptr,
+                        const Sweep &sweep = {}) {
   const std::size_t count = indices ? indices->size() : cloud.size();
   code.clear();
   code.reserve(count);
@@ -44,6 +47,7 @@ void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &c
     code.emplace_back(p.x, p.y);
     has_invalid = has_invalid || !isFinite(code.back());
   }
+  deskewPolarCode(code, sweep);
   if (order) {
     order->resize(count);
     std::iota(order->begin(), order->end(), 0);
@@ -66,9 +70,9 @@ ComplexSequence polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, const p
 template <typename PointT>
 void extractContourFeatures(const pcl::PointCloud<PointT> &cloud, const ContourParams &params,
                             ContourFeatures &features, const pcl::Indices *indices = nullptr,
-                            std::vector<int> *order = nullptr) {
+                            std::vector<int> *order = nullptr, const Sweep &sweep = {}) {
   ComplexSequence &code = features.buffers.polar_code;  // the extraction reads it, never writes it
-  polarCodeFromCloud(cloud, code, indices, order);
+  polarCodeFromCloud(cloud, code, indices, order, sweep);
   extractContourFeatures(code, params, features);
 }
 

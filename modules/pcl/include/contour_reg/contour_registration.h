@@ -92,6 +92,17 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   void clearSource();
   void clearTarget();
 
+  /// Scans taken while moving (deskew.h): the source's (target's) points, in cloud order, were
+  /// taken sweep.time_increment s apart while the sensor moved at sweep.twist (its velocity
+  /// in the frame of the sensor at the first point, e.g. from wheel odometry). align()
+  /// deskews them into the frame of the sensor at the first point before extracting special
+  /// points, so the transform is between those frames. The default Sweep: taken at once.
+  /// Kept until set again; setting one counts as new data.
+  void setSourceSweep(const Sweep &sweep);
+  void setTargetSweep(const Sweep &sweep);
+  const Sweep &getSourceSweep() const { return source_sweep_; }
+  const Sweep &getTargetSweep() const { return target_sweep_; }
+
   /// Stages A-C settings (contour, equalization, corner filter, special points).
   void setContourParams(const ContourParams &params);
   const ContourParams &getContourParams() const { return contour_params_; }
@@ -133,6 +144,7 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   void holdSource(const PointCloudSourceConstPtr &cloud);
   void holdTarget(const PointCloudTargetConstPtr &cloud);
 
+  Sweep source_sweep_, target_sweep_;
   ContourFeatures source_features_, target_features_;
   RegistrationBuffers buffers_;  // the target's refinement index, rebuilt for a new target extraction
   // Whether the features were extracted from the cloud now set (at the last align()): the

@@ -20,8 +20,20 @@ struct Twist2D {
   double vx = 0.0, vy = 0.0, wz = 0.0;
 };
 
+/// How a scan was taken: beam n (in the order the beams were taken) at n * time_increment s
+/// after the first, while the sensor moved at `twist`. The default is a scan taken at once.
+struct Sweep {
+  double time_increment = 0.0;  ///< s between consecutive beams
+  Twist2D twist;                ///< the sensor's velocity over the sweep
+  bool moving() const { return time_increment != 0.0 && (twist.vx != 0.0 || twist.vy != 0.0 || twist.wz != 0.0); }
+};
+
 /// The pose, as a complex position and a heading (rad), reached after `t` s at `twist` from the identity.
 void integrateTwist(const Twist2D &twist, double t, Complex &position, double &heading);
+
+/// Moves every finite point of `code` (sensor-frame points in the order the beams were taken)
+/// from where the sensor was when its beam fired into the frame of the sensor at the first beam.
+void deskewPolarCode(ComplexSequence &code, const Sweep &sweep);
 
 /// The deskewed polar code of `scan` into `code` (beam order, NaN for invalid beams). With a
 /// time_increment of 0 or a zero twist it equals polarCode(scan).

@@ -102,6 +102,7 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::swapSourceAndTarget(
   holdSource(target_);
   holdTarget(source);
   std::swap(source_features_, target_features_);
+  std::swap(source_sweep_, target_sweep_);
   std::swap(source_extracted_, target_extracted_);
   reuse_source_ = source_extracted_;
 }
@@ -121,6 +122,18 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::clearTarget() {
   target_features_.clear();
   target_extracted_ = false;
   converged_ = false;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::setSourceSweep(const Sweep &sweep) {
+  source_sweep_ = sweep;
+  source_extracted_ = reuse_source_ = false;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::setTargetSweep(const Sweep &sweep) {
+  target_sweep_ = sweep;
+  target_extracted_ = false;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
@@ -154,11 +167,12 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     result_.status = RegistrationStatus::kTooFewSpecialPoints;
     return;
   }
-  if (!reuse_source_) extractContourFeatures(*input_, contour_params_, source_features_);
+  if (!reuse_source_)
+    extractContourFeatures(*input_, contour_params_, source_features_, nullptr, nullptr, source_sweep_);
   reuse_source_ = false;  // the next align() reads the source again
   source_extracted_ = true;
   if (!target_extracted_) {
-    extractContourFeatures(*target_, contour_params_, target_features_);
+    extractContourFeatures(*target_, contour_params_, target_features_, nullptr, nullptr, target_sweep_);
     target_extracted_ = true;
   }
 
