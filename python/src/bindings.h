@@ -24,9 +24,10 @@ void bindOdometry(py::module_ &m);      // odometry()
 void bindEvaluation(py::module_ &m);    // evaluate(), relation_errors(), pose helpers
 void bindSimulation(py::module_ &m);    // simulate()
 
-/// A beam-order cloud from a LaserScan or an N x 2 array of points (NaN rows: invalid beams).
+/// A beam-order cloud from a LaserScan (deskewed by `twist` when it has beam timing) or an N x 2
+/// array of points (NaN rows: invalid beams; a twist is a py::value_error).
 /// Throws py::type_error for anything else, py::value_error for a wrong shape.
-odometry::Cloud::Ptr beamsOf(const py::handle &scan);
+odometry::Cloud::Ptr beamsOf(const py::handle &scan, const Twist2D &twist = {});
 
 /// The matcher settings given as keyword arguments (contour_step, threshold, candidates, arm,
 /// local_fallback, probe_distance, icp_max_distance, ndt_resolution, iterations). An unknown

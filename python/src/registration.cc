@@ -17,14 +17,25 @@ std::string methodList() {
   return names;
 }
 
+// (vx m/s, vy m/s, wz rad/s), or none.
+Twist2D twistOf(const py::object &twist, const char *name) {
+  if (twist.is_none()) return {};
+  const auto v = twist.cast<std::vector<double>>();
+  if (v.size() != 3 || !std::isfinite(v[0] + v[1] + v[2]))
+    throw py::value_error(std::string(name) + " must be 3 finite numbers: vx (m/s), vy (m/s), wz (rad/s)");
+  return {v[0], v[1], v[2]};
+}
+
 odometry::MatchResult registerPair(const py::handle &source, const py::handle &target, const std::string &method,
-                                   const py::object &guess, const py::kwargs &settings) {
+                                   const py::object &guess, const py::object &source_twist,
+                                   const py::object &target_twist, const py::kwargs &settings) {
   const odometry::MatcherSettings s = matcherSettings(settings);
   const Eigen::Matrix3d start = guess.is_none() ? Eigen::Matrix3d::Identity() : matrixOf(guess, "guess");
   if (!start.allFinite()) throw py::value_error("guess must be finite");
   std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, s);
   if (!matcher) throw py::value_error("unknown method '" + method + "' (methods: " + methodList() + ")");
-  const odometry::Cloud::Ptr source_beams = beamsOf(source), target_beams = beamsOf(target);
+  const odometry::Cloud::Ptr source_beams = beamsOf(source, twistOf(source_twist, "source_twist")),
+                             target_beams = beamsOf(target, twistOf(target_twist, "target_twist"));
   py::gil_scoped_release release;  // every call has its own matcher: threads run side by side
   return matcher->match(target_beams, source_beams, start);
 }
@@ -67,9 +78,11 @@ void bindRegistration(py::module_ &m) {
 
   m.def("methods", &odometry::methodNames, "The method names register() and odometry() take.");
   m.def("register", &registerPair, py::arg("source"), py::arg("target"), py::arg("method") = "contour",
-        py::arg("guess") = py::none(),
+        py::arg("guess") = py::none(), py::arg("source_twist") = py::none(), py::arg("target_twist") = py::none(),
         "Registers `source` onto `target` (each a LaserScan or N x 2 points in beam order, NaN rows for invalid "
-        "beams) with `method` (see methods()), from `guess` (3 x 3, source to target; None: identity). Keyword "
+        "beams) with `method` (see methods()), from `guess` (3 x 3, source to target; None: identity). "
+        "source_twist / target_twist: (vx m/s, vy m/s, wz rad/s), the sensor's velocity over a LaserScan's sweep: "
+        "a scan with time_increment is deskewed by it first. Keyword "
         "settings: contour_step (m), threshold, arm, candidates, local_fallback, probe_distance (m), "
         "icp_max_distance (m), ndt_resolution (m), iterations. Releases the GIL while it registers.");
 }

@@ -142,3 +142,34 @@ def test_methods_lists_every_method_and_each_registers():
     scan = square_room_scan()
     for name in names:
         assert isinstance(cr.register(scan, scan, method=name), cr.RegistrationResult)
+
+
+def test_twists_deskew_scans_taken_while_moving():
+    """The S path at 2 Hz without stopping, each scan deskewed by the true motion to the next one:
+    on pairs that turn, the raw scans are bent and turn the answer by degrees."""
+    run = cr.simulate(path="S", rate=2.0, motion="continuous")
+    log, gt = run.log, run.ground_truth
+    assert log[0].time_increment > 0
+
+    def twist(k):
+        x, y, yaw = true_motion(run, k, k + 1)
+        dt = gt[k + 1, 0] - gt[k, 0]
+        return (x / dt, y / dt, yaw / dt)
+
+    raw, deskewed = [], []
+    for k in range(len(log) - 2):
+        truth = true_motion(run, k, k + 1)
+        if abs(truth[2]) < np.radians(5):
+            continue
+        plain = cr.register(log[k + 1], log[k])
+        swept = cr.register(log[k + 1], log[k], source_twist=twist(k + 1), target_twist=twist(k))
+        assert swept.converged, (k, swept.reason)
+        deskewed.append(np.degrees(pose_error(swept.pose, truth)[1]))
+        raw.append(np.degrees(pose_error(plain.pose, truth)[1]) if plain.converged else np.inf)
+    assert len(deskewed) >= 6
+    assert np.median(deskewed) < 0.5 * np.median(raw), (deskewed, raw)
+    assert max(deskewed) < 6.0, deskewed
+    with pytest.raises(ValueError):
+        cr.register(np.zeros((4, 2)), log[0], source_twist=(1.0, 0.0, 0.0))
+    with pytest.raises(ValueError):
+        cr.register(log[1], log[0], source_twist=(1.0, 0.0))
