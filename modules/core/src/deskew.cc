@@ -18,12 +18,19 @@ void integrateTwist(const Twist2D &twist, double t, Complex &position, double &h
 
 void deskewPolarCode(ComplexSequence &code, const Sweep &sweep) {
   if (!sweep.moving()) return;
-  for (std::size_t n = 0; n < code.size(); ++n) {
+  // integrateTwist at t = n * time_increment, with the heading's unit vector advanced by one
+  // fixed turn per beam instead of a sine and cosine per beam.
+  const Complex velocity(sweep.twist.vx, sweep.twist.vy);
+  const double wz = sweep.twist.wz;
+  const bool turning = std::abs(wz) > 1e-9;
+  const Complex turn_per_beam = std::polar(1.0, wz * sweep.time_increment);
+  Complex heading(1.0, 0.0);  // exp(i wz t)
+  for (std::size_t n = 0; n < code.size(); ++n, heading *= turn_per_beam) {
     if (!isFinite(code[n])) continue;
-    Complex position;
-    double heading = 0.0;
-    integrateTwist(sweep.twist, sweep.time_increment * static_cast<double>(n), position, heading);
-    code[n] = position + std::polar(1.0, heading) * code[n];
+    const double t = sweep.time_increment * static_cast<double>(n);
+    const Complex position =
+        turning ? Complex(heading.imag(), 1.0 - heading.real()) / wz * velocity : Complex(t, 0.0) * velocity;
+    code[n] = position + heading * code[n];
   }
 }
 
