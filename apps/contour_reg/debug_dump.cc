@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <optional>
 #include <random>
 
 #include "contour_reg/core/registration.h"
 #include "contour_reg/drawing/debug_images.h"
 #include "contour_reg/io/pose2d.h"
+#include "contour_reg/odometry/odometry.h"
 
 namespace contour_reg::cli {
 
@@ -28,20 +28,14 @@ std::vector<std::string> DebugDumper::dumpPair(const io::ScanLog &log, std::size
   std::snprintf(title, sizeof title, "scan %zu (source) onto scan %zu (target)", source, target);
   drawing::writeImage(written[1], drawing::drawPair(a, b, fa, fb, result, title));
   if (b.time_increment > 0.0) {
-    // The motion over the source's sweep, as the odometry deskews it: the wheel odometry to the
-    // next scan when the log has it, else the motion this pair's registration found.
-    const io::LogEntry &entry = log.entries[source];
-    std::optional<io::Pose2D> motion;
-    double dt = 0.0;
-    if (source + 1 < log.entries.size() && entry.odometry && log.entries[source + 1].odometry) {
-      motion = io::between(*entry.odometry, *log.entries[source + 1].odometry);
-      dt = log.entries[source + 1].scan.stamp - b.stamp;
-    } else if (result.converged) {
-      motion = io::toPose(result.transform);
-      dt = b.stamp - a.stamp;
-    }
+    // The motion over the source's sweep, as the odometry deskews it: the wheel odometry's when
+    // the log has it, else the motion this pair's registration found.
     Twist2D twist;
-    if (motion && std::abs(dt) > 1e-3) twist = {motion->x / dt, motion->y / dt, motion->yaw / dt};
+    const double dt = b.stamp - a.stamp;
+    if (const auto wheel = odometry::wheelTwistOverSweep(log, source))
+      twist = *wheel;
+    else if (result.converged && std::abs(dt) > 1e-3)
+      twist = odometry::twistOver(io::toPose(result.transform), dt);
     written.push_back((fs::path(folder_) / ("deskew_" + std::to_string(source) + ".png")).string());
     std::snprintf(title, sizeof title, "scan %zu raw and deskewed", source);
     drawing::writeImage(written.back(), drawing::drawDeskew(b, twist, title));

@@ -10,8 +10,7 @@ namespace contour_reg::python {
 
 odometry::Cloud::Ptr beamsOf(const py::handle &scan, const Twist2D &twist) {
   if (py::isinstance<LaserScan>(scan)) return odometry::beamCloud(scan.cast<const LaserScan &>(), twist);
-  if (twist.vx != 0.0 || twist.vy != 0.0 || twist.wz != 0.0)
-    throw py::value_error("a twist deskews a LaserScan with time_increment, not points");
+  if (!twist.isZero()) throw py::value_error("a twist deskews a LaserScan with time_increment, not points");
   if (py::isinstance<py::str>(scan) || (!py::isinstance<py::array>(scan) && !py::isinstance<py::sequence>(scan)))
     throw py::type_error("a scan is a LaserScan or an N x 2 array of points");
   const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(scan);

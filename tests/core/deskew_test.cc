@@ -24,7 +24,7 @@ MovingScan wallSeenWhileMoving() {
   simulation::LidarModel model = simulation::LidarModel::hokuyoUtm30lx();
   model.range_noise = 0.0;
   MovingScan moving;
-  const double time_increment = model.angleIncrement() / (2.0 * M_PI) * 0.1;
+  const double time_increment = beamInterval(0.1, model.angleIncrement());
   std::mt19937 rng(1);
   moving.scan = simulation::simulateScan(
       wall,

@@ -84,6 +84,22 @@ TEST(Rosbag, BeamTimingThatCannotBeUsedIsReportedAndDropped) {
   EXPECT_NE(read.report.problems[0].find(path), std::string::npos) << read.report.problems[0];
 }
 
+// A bag's times start at its epoch: a scan stamped before it is an error, not a moved stamp.
+TEST(Rosbag, ANegativeStampCannotBeWritten) {
+  if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
+  test::TempDir dir;
+  const std::string path = (dir.path() / "early.bag").string();
+  ScanLog log = timedLog();
+  log.entries[1].scan.stamp = -0.5;
+  try {
+    writeRosbag(path, log);
+    FAIL() << "a negative stamp was written";
+  } catch (const ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("stamp"), std::string::npos) << error.what();
+  }
+}
+
 TEST(Rosbag, IntelBagAgreesWithIntelLog) {
   if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
   const std::string bag = test::sharedDataset("intel/intel.orig.bag"), clf = test::sharedDataset("intel/intel.clf");

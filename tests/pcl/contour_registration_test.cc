@@ -136,7 +136,7 @@ TEST(ContourRegistration, ASweepDeskewsScansTakenWhileMoving) {
   const double period = 0.2;
   simulation::LidarModel lidar = simulation::LidarModel::hokuyoUtm30lx();
   lidar.range_noise = 0.005;
-  const double time_increment = lidar.angleIncrement() / (2.0 * M_PI) * period;
+  const double time_increment = beamInterval(period, lidar.angleIncrement());
   auto motion = [&](double t) {
     Complex position;
     double heading = 0.0;

@@ -107,7 +107,9 @@ View View::fit(const std::vector<Eigen::Vector2d> &points, int width, int height
 cv::Mat drawDeskew(const LaserScan &scan, const Twist2D &twist, const std::string &title, int width) {
   const int height = width * 3 / 4;
   cv::Mat image(height, width, CV_8UC3, kWhite);
-  const ComplexSequence raw = polarCode(scan), deskewed = deskewedPolarCode(scan, twist);
+  const ComplexSequence raw = polarCode(scan);
+  ComplexSequence deskewed = raw;
+  deskewPolarCode(deskewed, Sweep{scan.time_increment, twist});
   std::vector<Eigen::Vector2d> raw_points, deskewed_points;
   double largest_shift = 0.0;
   for (std::size_t n = 0; n < raw.size() && n < deskewed.size(); ++n) {

@@ -1,6 +1,5 @@
 #include "contour_reg/io/read_log.h"
 
-#include <cmath>
 #include <filesystem>
 
 #include "contour_reg/io/carmen.h"
@@ -36,7 +35,7 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
   if (options.scan_period > 0.0)
     for (LogEntry &entry : log.entries)
       if (entry.scan.time_increment == 0.0)
-        entry.scan.time_increment = options.scan_period * std::abs(entry.scan.angle_increment) / (2.0 * M_PI);
+        entry.scan.time_increment = beamInterval(options.scan_period, entry.scan.angle_increment);
   return log;
 }
 

@@ -39,7 +39,6 @@ LogEntry toEntry(const sensor_msgs::LaserScan &message, double max_range) {
   scan.angle_increment = message.angle_increment;
   scan.range_min = std::max(0.0f, message.range_min);
   scan.range_max = message.range_max > 0.0f ? std::min<double>(message.range_max, max_range) : max_range;
-  scan.time_increment = message.time_increment;
   scan.ranges.resize(message.ranges.size());
   for (std::size_t n = 0; n < message.ranges.size(); ++n)
     scan.ranges[n] = scan.isValidRange(message.ranges[n]) ? message.ranges[n] : std::numeric_limits<float>::quiet_NaN();
@@ -94,10 +93,10 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
           } else {
             log.entries.push_back(toEntry(*scan, options.max_range));
             const std::string timing = beamTimingProblem(*scan);
-            if (!timing.empty()) {
+            if (timing.empty())
+              log.entries.back().scan.time_increment = scan->time_increment;
+            else
               log.report.add(where, index, timing + ": the scan is read without beam timing");
-              log.entries.back().scan.time_increment = 0.0;
-            }
           }
         } else if (auto odom = message.instantiate<nav_msgs::Odometry>()) {
           const auto &pose = odom->pose.pose;
@@ -129,8 +128,11 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
     std::uint32_t sequence = 0;
     for (const LogEntry &entry : log.entries) {
       const LaserScan &scan = entry.scan;
+      if (!(scan.stamp >= 0.0) || !std::isfinite(scan.stamp))
+        throw ReadError("scan " + std::to_string(sequence) + " has stamp " + std::to_string(scan.stamp) +
+                        " s, which a bag cannot hold");
       // A bag's record time must be after its epoch; the header keeps the scan's own stamp.
-      const ros::Time stamp(std::max(scan.stamp, 0.0));
+      const ros::Time stamp(scan.stamp);
       const ros::Time recorded = std::max(stamp, ros::TIME_MIN);
       sensor_msgs::LaserScan message;
       message.header.seq = sequence++;
@@ -141,7 +143,9 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
       message.angle_max = static_cast<float>(scan.bearing(scan.ranges.empty() ? 0 : scan.ranges.size() - 1));
       message.time_increment = static_cast<float>(scan.time_increment);
       // A spinning LIDAR's period: one turn of beams (0 without timing).
-      message.scan_time = static_cast<float>(scan.time_increment * 2.0 * M_PI / std::abs(scan.angle_increment));
+      const bool timed = scan.time_increment > 0.0 && scan.angle_increment != 0.0;
+      message.scan_time =
+          timed ? static_cast<float>(scan.time_increment / beamInterval(1.0, scan.angle_increment)) : 0.0f;
       message.range_min = static_cast<float>(scan.range_min);
       float farthest = 0.0f;
       message.ranges.resize(scan.ranges.size());

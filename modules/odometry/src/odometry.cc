@@ -15,9 +15,6 @@ using io::toPose;
 
 namespace {
 
-// The constant twist that makes `motion` in `dt` s.
-Twist2D twistOver(const io::Pose2D &motion, double dt) { return {motion.x / dt, motion.y / dt, motion.yaw / dt}; }
-
 // Wheel odometry between scans a and b of the log, when both have it.
 std::optional<io::Pose2D> wheelMotion(const io::LogEntry &a, const io::LogEntry &b) {
   if (!a.odometry || !b.odometry) return std::nullopt;
@@ -25,6 +22,16 @@ std::optional<io::Pose2D> wheelMotion(const io::LogEntry &a, const io::LogEntry 
 }
 
 }  // namespace
+
+Twist2D twistOver(const io::Pose2D &motion, double dt) { return {motion.x / dt, motion.y / dt, motion.yaw / dt}; }
+
+std::optional<Twist2D> wheelTwistOverSweep(const io::ScanLog &log, std::size_t k) {
+  if (k + 1 >= log.entries.size()) return std::nullopt;
+  const auto wheel = wheelMotion(log.entries[k], log.entries[k + 1]);
+  const double dt = log.entries[k + 1].scan.stamp - log.entries[k].scan.stamp;
+  if (!wheel || !(dt > 1e-3)) return std::nullopt;
+  return twistOver(*wheel, dt);
+}
 
 io::Trajectory wheelOdometry(const io::ScanLog &log) {
   io::Trajectory trajectory;
@@ -64,13 +71,11 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
 
     const io::Pose2D guess = between(poses[reference], expected);
     const bool deskewing = options.deskew && entries[k].scan.time_increment > 0.0;
-    // The motion over this scan's sweep: the wheel odometry from its stamp to the next scan's
-    // (the interval its sweep lies in) when the log has it, else the last motion.
-    const auto wheel_over_sweep = k + 1 < entries.size() ? wheelMotion(entries[k], entries[k + 1]) : std::nullopt;
-    const double sweep_dt = k + 1 < entries.size() ? entries[k + 1].scan.stamp - entries[k].scan.stamp : 0.0;
-    const bool by_wheel = deskewing && wheel_over_sweep && sweep_dt > 1e-3;
+    // The motion over this scan's sweep: the wheel odometry's when the log has it, else the last motion.
+    const std::optional<Twist2D> wheel_twist = deskewing ? wheelTwistOverSweep(log, k) : std::nullopt;
+    const bool by_wheel = wheel_twist.has_value();
     if (by_wheel)
-      twists[k] = twistOver(*wheel_over_sweep, sweep_dt);
+      twists[k] = *wheel_twist;
     else if (deskewing && velocity_dt > 1e-3)
       twists[k] = twistOver(velocity_motion, velocity_dt);
     MatchResult match =

@@ -38,7 +38,7 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
       entry.scan = simulateScan(world, truth, lidar, rng);
     } else {
       // The LIDAR turns once per period; beam n fires at its bearing's share of a turn.
-      const double beam_time = lidar.angleIncrement() / (2.0 * M_PI) * period;
+      const double beam_time = beamInterval(period, lidar.angleIncrement());
       entry.scan = simulateScan(
           world,
           [&](std::size_t n) {

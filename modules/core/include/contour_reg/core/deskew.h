@@ -18,6 +18,7 @@ namespace contour_reg {
 /// A constant planar velocity: m/s along x and y, rad/s about z, in the sensor's frame at the stamp.
 struct Twist2D {
   double vx = 0.0, vy = 0.0, wz = 0.0;
+  bool isZero() const { return vx == 0.0 && vy == 0.0 && wz == 0.0; }
 };
 
 /// How a scan was taken: beam n (in the order the beams were taken) at n * time_increment s
@@ -25,7 +26,7 @@ struct Twist2D {
 struct Sweep {
   double time_increment = 0.0;  ///< s between consecutive beams
   Twist2D twist;                ///< the sensor's velocity over the sweep
-  bool moving() const { return time_increment != 0.0 && (twist.vx != 0.0 || twist.vy != 0.0 || twist.wz != 0.0); }
+  bool moving() const { return time_increment != 0.0 && !twist.isZero(); }
 };
 
 /// The pose, as a complex position and a heading (rad), reached after `t` s at `twist` from the identity.

@@ -29,4 +29,10 @@ struct LaserScan {
   double bearing(std::size_t n) const { return angle_min + static_cast<double>(n) * angle_increment; }
 };
 
+/// s between consecutive beams of a LIDAR that turns once per `turn_period` s, beams
+/// `angle_increment` rad apart (LaserScan::time_increment).
+inline double beamInterval(double turn_period, double angle_increment) {
+  return turn_period * std::abs(angle_increment) / (2.0 * M_PI);
+}
+
 }  // namespace contour_reg

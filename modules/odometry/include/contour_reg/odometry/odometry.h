@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,14 @@ struct OdometryRun {
 /// The log's own wheel odometry as a trajectory, starting at the origin with the first scan
 /// that has it; scans without it are left out.
 io::Trajectory wheelOdometry(const io::ScanLog &log);
+
+/// The constant twist that makes `motion` in `dt` s (dt > 0).
+Twist2D twistOver(const io::Pose2D &motion, double dt);
+
+/// The motion over scan k's sweep by the wheel odometry: its increment from scan k's stamp to
+/// scan k+1's (the interval the sweep lies in) as a constant twist; none when either scan has
+/// no odometry or k is the last scan.
+std::optional<Twist2D> wheelTwistOverSweep(const io::ScanLog &log, std::size_t k);
 
 /// Runs odometry over `log` with `matcher`. A registration that fails is retried from the
 /// constant-velocity prediction (retry_with_velocity); one that fails again is never chained: the
