@@ -12,7 +12,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libeigen3-dev libpcl-dev libflann-dev libopencv-dev
           libcli11-dev zlib1g-dev libyaml-cpp-dev libgtest-dev libbenchmark-dev
-          librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev clang-format
+          librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev clang-format
           python3-dev python3-numpy python3-pytest pybind11-dev parallel)
 
 FUZZ_PACKAGES=(clang libclang-rt-14-dev)

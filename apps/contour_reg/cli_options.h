@@ -2,11 +2,13 @@
 // Options several subcommands share: how to read a scan source, and the settings of the
 // registration methods.
 
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -35,7 +37,22 @@ inline std::string logStem(const std::string &path) {
   return p.filename().string();
 }
 
-/// --max-range, --scan-topic, --odom-topic, --scan-period.
+/// --laser-pose X Y YAW: the laser's pose on the robot (m, m, deg), `what` said of it in the help.
+inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &laser_pose, const std::string &what) {
+  command
+      .add_option_function<std::vector<double>>(
+          "--laser-pose",
+          [&laser_pose](const std::vector<double> &v) {
+            for (double value : v)
+              if (!std::isfinite(value)) throw CLI::ValidationError("--laser-pose", "X Y YAW must be finite numbers");
+            laser_pose = io::Pose2D{v[0], v[1], v[2] * M_PI / 180.0};
+          },
+          "The laser's pose on the robot, base_link -> laser (m, m, deg), " + what)
+      ->expected(3)
+      ->type_name("X Y YAW");
+}
+
+/// --max-range, --scan-topic, --odom-topic, --scan-period, --laser-pose.
 inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m, > 0)")
       ->capture_default_str()
@@ -48,6 +65,20 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
                   "from the stamp (s, >= 0; 0: none)")
       ->capture_default_str()
       ->check(nonNegative());
+  addLaserPoseOption(command, options.laser_pose, "over what the log says");
+}
+
+/// --frame: the frame a trajectory is written in.
+inline void addFrameOption(CLI::App &command, std::string &frame) {
+  command
+      .add_option("--frame", frame,
+                  "Frame of the trajectory: robot (base_link, when the log or --laser-pose gives the laser's "
+                  "mounting) or laser")
+      ->check(CLI::IsMember({"robot", "laser"}))
+      ->capture_default_str();
+}
+inline odometry::Frame frameOf(const std::string &name) {
+  return name == "laser" ? odometry::Frame::kLaser : odometry::Frame::kRobot;
 }
 
 /// Method settings worth studying from the command line; defaults are the library's.

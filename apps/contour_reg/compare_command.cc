@@ -33,7 +33,7 @@ struct CompareOptions {
   std::vector<std::string> inputs, ground_truths, relations;
   std::vector<std::string> methods = {"contour", "contour+icp", "icp", "icp-pl", "ndt2d"};
   std::string out;
-  std::string guess = "zero";
+  std::string guess = "zero", frame = "robot";
   bool keyframes = false;
   bool deskew = true;
   unsigned jobs = 0;
@@ -174,9 +174,10 @@ void runJob(const CompareOptions &options, const Input &input, const std::string
   run_options.guess = guessSource(options.guess);
   run_options.keyframes = options.keyframes;
   run_options.deskew = options.deskew;
+  run_options.frame = frameOf(options.frame);
   run_options.progress = progress;
   const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
-  io::writeTum(trajectoryPath(options, input.name, method), run.trajectory);
+  io::writeTum(trajectoryPath(options, input.name, method), run.trajectory, odometry::frameDescription(run, input.log));
   fs::create_directories(fs::path(options.out) / "jobs");
   writeJobRecord(recordPath(options, input.name, method), "contour_reg compare job: " + input.name + " " + method,
                  {{"registrations", double(run.stats.registrations)},
@@ -318,6 +319,7 @@ void addCompareCommand(CLI::App &app) {
       ->check(CLI::ExistingFile);
   command->add_option("--out", options->out, "Output folder")->required();
   addGuessOption(*command, options->guess);
+  addFrameOption(*command, options->frame);
   command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
   command->add_flag("--deskew,!--no-deskew", options->deskew,
                     "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "

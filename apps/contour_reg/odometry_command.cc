@@ -17,7 +17,7 @@ namespace contour_reg::cli {
 namespace {
 
 struct OdometryCommandOptions {
-  std::string input, output, method = "contour", guess = "zero";
+  std::string input, output, method = "contour", guess = "zero", frame = "robot";
   bool odom_guess = false, keyframes = false, deskew = true;
   std::string debug_dir, covariance;
   std::size_t debug_every = 0;
@@ -52,6 +52,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   run_options.guess = guessSource(options.odom_guess ? "odom" : options.guess);
   run_options.keyframes = options.keyframes;
   run_options.deskew = options.deskew;
+  run_options.frame = frameOf(options.frame);
   run_options.keyframe_distance = options.keyframe_distance;
   run_options.keyframe_angle = options.keyframe_angle_deg * M_PI / 180.0;
   ProgressBar progress(options.method);
@@ -67,7 +68,8 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   }
   const odometry::OdometryRun run = odometry::runOdometry(log, *matcher, run_options);
   progress.finish();
-  io::writeTum(options.output, run.trajectory);
+  const std::string frame = odometry::frameDescription(run, log);
+  io::writeTum(options.output, run.trajectory, frame);
   if (!options.covariance.empty()) writeSteps(options.covariance, log, run);
   std::printf("%s: %zu scans, %zu registrations by %s, %zu failed (%zu degenerate), median %.3f ms, p95 %.3f ms\n",
               options.input.c_str(), log.entries.size(), run.stats.registrations, options.method.c_str(),
@@ -75,7 +77,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
               percentile(run.stats.milliseconds, 0.95));
   for (const auto &[reason, count] : run.stats.failure_reasons)
     std::printf("  failed: %s: %zu\n", reason.c_str(), count);
-  std::printf("trajectory: %s\n", options.output.c_str());
+  std::printf("trajectory: %s (%s)\n", options.output.c_str(), frame.c_str());
   return 0;
 }
 
@@ -92,6 +94,7 @@ void addOdometryCommand(CLI::App &app) {
       ->capture_default_str();
   command->add_option("--output,-o", options->output, "TUM trajectory to write")->required();
   addGuessOption(*command, options->guess);
+  addFrameOption(*command, options->frame);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
   command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
   command->add_flag("--deskew,!--no-deskew", options->deskew,

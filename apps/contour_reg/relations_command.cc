@@ -28,6 +28,7 @@ struct RelationsOptions {
   std::size_t limit = 0;
   std::string pairs_csv;         // one row per relation and method, when set
   std::size_t log_pose_gap = 0;  // > 0: pairs k, k + gap referenced by the log's own poses
+  std::string frame = "robot";
   io::LogReadOptions read;
   MethodOptions method_options;
 };
@@ -73,6 +74,7 @@ int runRelations(const RelationsOptions &options) {
   std::vector<ScanPair> pairs =
       options.log_pose_gap > 0 ? pairsFromLogPoses(log, options.log_pose_gap) : pairsFromRelations(log, options);
   if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
+  const bool robot_frame = options.frame == "robot" && log.laser_pose.has_value();
   if (options.log_pose_gap > 0)
     std::printf(
         "%s: %zu pairs of scans %zu apart, referenced by the log's poses, zero guess, success = within %.2f m and %.1f "
@@ -81,6 +83,9 @@ int runRelations(const RelationsOptions &options) {
   else
     std::printf("%s: %zu relations with |t2 - t1| <= %.1f s, zero guess, success = within %.2f m and %.1f deg\n\n",
                 options.input.c_str(), pairs.size(), options.max_dt, options.tolerance, options.tolerance_deg);
+  if (robot_frame)
+    std::printf("estimates in the robot's frame: the laser is mounted at x %.3f m, y %.3f m, yaw %.2f deg\n\n",
+                log.laser_pose->x, log.laser_pose->y, log.laser_pose->yaw * 180.0 / M_PI);
   std::FILE *csv = nullptr;
   if (!options.pairs_csv.empty()) {
     csv = std::fopen(options.pairs_csv.c_str(), "w");
@@ -104,7 +109,12 @@ int runRelations(const RelationsOptions &options) {
     for (const ScanPair &pair : pairs) {
       progress(ms.size(), pairs.size());
       const io::Relation &r = pair.reference;
-      const odometry::MatchResult match = matcher->match(log.entries[pair.first].scan, log.entries[pair.second].scan);
+      odometry::MatchResult match = matcher->match(log.entries[pair.first].scan, log.entries[pair.second].scan);
+      if (robot_frame) {  // the references are the robot's motions
+        const io::Pose2D laser_motion = io::toPose(match.transform);
+        match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
+        match.transform = io::toMatrix(io::robotMotion(laser_motion, *log.laser_pose));
+      }
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
       const double et = std::hypot(t(0, 2) - r.motion.x, t(1, 2) - r.motion.y);
@@ -163,6 +173,7 @@ void addRelationsCommand(CLI::App &app) {
       ->capture_default_str()
       ->check(positive());
   addReadOptions(*command, options->read);
+  addFrameOption(*command, options->frame);
   addMethodOptions(*command, options->method_options);
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();

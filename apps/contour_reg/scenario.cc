@@ -64,6 +64,7 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
   command.add_option("--odometry-noise", options.odometry_noise, "Relative wheel odometry noise (>= 0)")
       ->capture_default_str()
       ->check(nonNegative());
+  addLaserPoseOption(command, options.laser_pose, "where the simulated LIDAR is mounted (default: 0 0 0)");
 }
 
 Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::string> &names) {
@@ -111,6 +112,7 @@ simulation::RunSettings runSettings(const ScenarioOptions &options, double rate,
   settings.motion = options.motion == "continuous" ? simulation::Motion::kContinuous : simulation::Motion::kStopAndGo;
   settings.odometry_noise = options.odometry_noise;
   settings.seed = seed;
+  settings.laser_pose = options.laser_pose.value_or(io::Pose2D{});
   return settings;
 }
 

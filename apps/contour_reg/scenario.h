@@ -4,6 +4,7 @@
 // read from a paths file.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,10 @@ struct ScenarioOptions {
   std::string motion = "stop-and-go";
   double speed = 0.5;
   double odometry_noise = 0.02;
+  std::optional<io::Pose2D> laser_pose;  ///< the LIDAR on the robot; unset: at its centre
 };
 
-/// --map, --resolution, --paths-file, --lidar, --motion, --speed, --odometry-noise.
+/// --map, --resolution, --paths-file, --lidar, --motion, --speed, --odometry-noise, --laser-pose.
 void addScenarioOptions(CLI::App &command, ScenarioOptions &options);
 
 struct Scenario {

@@ -45,4 +45,8 @@ Eigen::Matrix3d matrixOf(const py::handle &array, const char *what);
 py::array_t<double> trajectoryArray(const io::Trajectory &trajectory);
 io::Trajectory trajectoryOf(const py::handle &array, const char *what);
 
+/// None or (x m, y m, yaw rad) and back; anything else raises ValueError naming `what`.
+py::object poseOrNone(const std::optional<io::Pose2D> &pose);
+std::optional<io::Pose2D> poseFrom(const py::object &value, const char *what);
+
 }  // namespace contour_reg::python

@@ -67,6 +67,22 @@ py::array_t<double> relationsArray(const std::vector<io::Relation> &relations) {
 
 }  // namespace
 
+py::object poseOrNone(const std::optional<io::Pose2D> &pose) {
+  return pose ? py::object(py::make_tuple(pose->x, pose->y, pose->yaw)) : py::object(py::none());
+}
+
+std::optional<io::Pose2D> poseFrom(const py::object &value, const char *what) {
+  if (value.is_none()) return std::nullopt;
+  std::vector<double> v;
+  try {
+    v = value.cast<std::vector<double>>();
+  } catch (const py::cast_error &) {
+  }
+  if (v.size() != 3 || !std::isfinite(v[0] + v[1] + v[2]))
+    throw py::value_error(std::string(what) + " must be None or (x m, y m, yaw rad), finite");
+  return io::Pose2D{v[0], v[1], v[2]};
+}
+
 void bindLogs(py::module_ &m) {
   py::class_<io::ScanLog>(m, "Log",
                           "A log of scans in stamp order, with the wheel odometry (or the log's own pose) at each.")
@@ -86,6 +102,11 @@ void bindLogs(py::module_ &m) {
       .def_property_readonly("odometry", &odometryArray,
                              "N x 3 (x m, y m, yaw rad) wheel odometry at every scan, or the pose the log carries; "
                              "NaN rows where there is none")
+      .def_property(
+          "laser_pose", [](const io::ScanLog &log) { return poseOrNone(log.laser_pose); },
+          [](io::ScanLog &log, const py::object &value) { log.laser_pose = poseFrom(value, "laser_pose"); },
+          "(x m, y m, yaw rad): the laser's pose on the robot (base_link -> laser), when the log says (ROBOTLASER1 "
+          "lines, a bag's tf) or it is set; None: unknown, odometry then takes the laser to be at the centre")
       .def_property_readonly(
           "skipped", [](const io::ScanLog &log) { return log.report.skipped; }, "bad or truncated lines skipped")
       .def_property_readonly(
@@ -100,9 +121,10 @@ void bindLogs(py::module_ &m) {
   m.def(
       "read_log",
       [](const std::string &path, double max_range, const std::string &scan_topic, const std::string &odom_topic,
-         double scan_period) {
+         double scan_period, const py::object &laser_pose) {
         if (!(scan_period >= 0.0)) throw py::value_error("scan_period must be >= 0 s");
         io::LogReadOptions options;
+        options.laser_pose = poseFrom(laser_pose, "laser_pose");
         options.scan_period = scan_period;
         options.max_range = max_range;
         options.scan_topic = scan_topic;
@@ -111,10 +133,11 @@ void bindLogs(py::module_ &m) {
         return io::readLog(path, options);
       },
       py::arg("path"), py::arg("max_range") = io::LogReadOptions{}.max_range, py::arg("scan_topic") = "",
-      py::arg("odom_topic") = "", py::arg("scan_period") = 0.0,
+      py::arg("odom_topic") = "", py::arg("scan_period") = 0.0, py::arg("laser_pose") = py::none(),
       "Reads a CARMEN log (plain or gzip), a ROS 1 bag or a folder of PCD scans. Readings at or above max_range (m) "
       "are no-return; bags: the LaserScan and Odometry topics ('' : the first); scan_period: s per LIDAR turn for "
-      "scans without beam timing (beams in index order from the stamp; 0: none). Raises ReadError naming the file "
+      "scans without beam timing (beams in index order from the stamp; 0: none); laser_pose: (x m, y m, yaw rad) "
+      "of the laser on the robot, over what the log says. Raises ReadError naming the file "
       "(and line) when it cannot be used; bad lines it can skip are counted in Log.skipped.");
   m.def(
       "write_carmen", [](const std::string &path, const io::ScanLog &log) { io::writeCarmen(path, log); },

@@ -16,8 +16,10 @@ odometry::GuessSource guessSource(const std::string &guess) {
 }
 
 odometry::OdometryRun runOdometry(const io::ScanLog &log, const std::string &method, const std::string &guess,
-                                  bool keyframes, bool deskew, const py::kwargs &settings) {
+                                  bool keyframes, bool deskew, const std::string &frame, const py::kwargs &settings) {
+  if (frame != "robot" && frame != "laser") throw py::value_error("unknown frame '" + frame + "' (robot, laser)");
   odometry::OdometryOptions options;
+  options.frame = frame == "laser" ? odometry::Frame::kLaser : odometry::Frame::kRobot;
   options.guess = guessSource(guess);
   options.keyframes = keyframes;
   options.deskew = deskew;
@@ -49,6 +51,10 @@ void bindOdometry(py::module_ &m) {
           "trajectory", [](const odometry::OdometryRun &r) { return trajectoryArray(r.trajectory); },
           "N x 4 (stamp, x, y, yaw): one pose per scan, the first at the origin")
       .def_readonly("steps", &odometry::OdometryRun::steps)
+      .def_property_readonly(
+          "frame",
+          [](const odometry::OdometryRun &r) { return r.frame == odometry::Frame::kRobot ? "robot" : "laser"; },
+          "'robot' or 'laser': the frame of trajectory and steps")
       .def_property_readonly("registrations", [](const odometry::OdometryRun &r) { return r.stats.registrations; })
       .def_property_readonly(
           "failures", [](const odometry::OdometryRun &r) { return r.stats.failures; },
@@ -70,12 +76,13 @@ void bindOdometry(py::module_ &m) {
       });
 
   m.def("odometry", &runOdometry, py::arg("log"), py::arg("method") = "contour", py::arg("guess") = "zero",
-        py::arg("keyframes") = false, py::arg("deskew") = true,
+        py::arg("keyframes") = false, py::arg("deskew") = true, py::arg("frame") = "robot",
         "Laser odometry over a Log with `method` (see methods()): each scan registered against the previous one "
         "(or the last keyframe), from a guess of 'zero', 'odom' (the log's wheel odometry) or 'velocity'. A failed "
         "registration is retried from the constant-velocity prediction, then bridged. deskew: scans with beam "
-        "timing are deskewed by the motion over each (the wheel odometry when the log has it). Keyword settings as "
-        "register(). Releases the GIL.");
+        "timing are deskewed by the motion over each (the wheel odometry when the log has it). frame: 'robot' gives "
+        "the robot's trajectory when the log knows the laser's mounting (Log.laser_pose), 'laser' the laser's. "
+        "Keyword settings as register(). Releases the GIL.");
 }
 
 }  // namespace contour_reg::python

@@ -13,7 +13,8 @@ namespace {
 
 simulation::SimulatedRun simulate(const std::string &path, double rate, const std::string &map, double resolution,
                                   const std::string &lidar, const std::string &motion, double speed,
-                                  double odometry_noise, unsigned seed, const py::object &waypoints) {
+                                  double odometry_noise, unsigned seed, const py::object &waypoints,
+                                  const py::object &laser_pose) {
   if (!(rate > 0.0) || !(speed > 0.0) || !(odometry_noise >= 0.0) || !(resolution > 0.0))
     throw py::value_error("rate (Hz), speed (m/s) and resolution (m) must be > 0, odometry_noise >= 0");
   simulation::RunSettings settings;
@@ -30,6 +31,7 @@ simulation::SimulatedRun simulate(const std::string &path, double rate, const st
   settings.speed = speed;
   settings.odometry_noise = odometry_noise;
   settings.seed = seed;
+  settings.laser_pose = poseFrom(laser_pose, "laser_pose").value_or(io::Pose2D{});
 
   simulation::World world;
   std::vector<Eigen::Vector2d> route;
@@ -65,17 +67,18 @@ void bindSimulation(py::module_ &m) {
       .def_readonly("log", &simulation::SimulatedRun::log, "the scans, stamped k / rate s, with wheel odometry")
       .def_property_readonly(
           "ground_truth", [](const simulation::SimulatedRun &r) { return trajectoryArray(r.ground_truth); },
-          "N x 4 (stamp, x, y, yaw): the true sensor pose at each scan")
+          "N x 4 (stamp, x, y, yaw): the robot's true pose at each scan")
       .def_readonly("path_length", &simulation::SimulatedRun::path_length, "m");
 
   m.def("simulate", &simulate, py::arg("path") = "L", py::arg("rate") = 2.0, py::arg("map") = "office",
         py::arg("resolution") = 0.1, py::arg("lidar") = "hokuyo", py::arg("motion") = "stop-and-go",
         py::arg("speed") = 0.5, py::arg("odometry_noise") = 0.02, py::arg("seed") = 1,
-        py::arg("waypoints") = py::none(),
+        py::arg("waypoints") = py::none(), py::arg("laser_pose") = py::none(),
         "Drives a robot with a LIDAR (hokuyo or ydlidar) at `rate` Hz and `speed` m/s along a path (S, L, Y, O, "
         "line in the built-in office; S, L, Y, O placed automatically in a map file, map_server YAML or a PGM/PNG "
         "of `resolution` m per pixel; or `waypoints`, N x 2 in map metres). motion: stop-and-go (the paper's) or "
-        "continuous (every beam from where the robot is when it fires). Returns a SimulatedRun.");
+        "continuous (every beam from where the robot is when it fires). laser_pose: (x m, y m, yaw rad) of the LIDAR "
+        "on the robot (None: at its centre). Returns a SimulatedRun.");
 }
 
 }  // namespace contour_reg::python

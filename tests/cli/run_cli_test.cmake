@@ -63,6 +63,25 @@ foreach(file table.md arrivals.csv map.png trajectories/L-5hz.png)
     message(FATAL_ERROR "experiment did not write ${file}")
   endif()
 endforeach()
+# A laser mounted 0.3 m ahead of the robot's centre and turned 20 deg: the log says so
+# (ROBOTLASER1), and odometry gives the robot's trajectory, which the ground truth is.
+expect_run(0 simulate --path L --rate 2 --laser-pose 0.3 0 20 --out ${WORK_DIR}/mounted.log)
+foreach(frame robot laser)
+  expect_run(0 odometry ${WORK_DIR}/mounted.log --guess odom --frame ${frame} --output ${WORK_DIR}/mounted-${frame}.tum)
+  file(READ ${WORK_DIR}/mounted-${frame}.tum written)
+  expect_match("${written}" "^# frame: ${frame}")
+  expect_run(0 evaluate ${WORK_DIR}/mounted-${frame}.tum --gt ${WORK_DIR}/mounted.gt.tum)
+  string(REGEX MATCH "end-point error: [0-9.]+ m over [0-9.]+ m of ground-truth path = ([0-9.]+) %" found
+               "${LAST_OUT}")
+  if(NOT found)
+    message(FATAL_ERROR "no end-point error in:\n${LAST_OUT}")
+  endif()
+  set(percent_${frame} ${CMAKE_MATCH_1})
+endforeach()
+if(percent_robot GREATER 1 OR percent_laser LESS 5)
+  message(FATAL_ERROR "mounted.log: end-point error ${percent_robot} % as the robot's, ${percent_laser} % as the laser's")
+endif()
+
 # A moving robot's run written as a ROS 1 bag with beam timing: odometry deskews it by default.
 if(WITH_ROSBAG)
   expect_run(0 simulate --path S --rate 2 --motion continuous --out ${WORK_DIR}/moving.bag)

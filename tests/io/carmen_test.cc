@@ -166,6 +166,41 @@ TEST(Carmen, WrittenLogsReadBackWithBeamGeometry) {
   EXPECT_NEAR(back.entries[0].odometry->yaw, 0.3, 1e-6);
 }
 
+// A ROBOTLASER1 line carries the laser's pose and the robot's: their difference in the robot's
+// frame is where the laser is mounted. The robot at (1, 2) facing +y with the laser 0.25 m
+// ahead of it and turned 10 deg: the laser at (1, 2.25), yaw 100 deg.
+TEST(Carmen, RobotLaserLinesGiveTheMounting) {
+  TempDir dir;
+  const double deg = M_PI / 180.0;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "ROBOTLASER1 0 -1.5 3.0 1.0 30 0.01 0 4 1.0 2.0 3.0 4.0 0 %f %f %f %f %f %f 0 0 0 0 0 7.5 host 7.5\n",
+                1.0, 2.25, 100 * deg, 1.0, 2.0, 90 * deg);
+  const ScanLog log = readCarmen(dir.write("mounted.log", line));
+  ASSERT_EQ(log.entries.size(), 1u);
+  ASSERT_TRUE(log.laser_pose.has_value());
+  EXPECT_NEAR(log.laser_pose->x, 0.25, 1e-6);
+  EXPECT_NEAR(log.laser_pose->y, 0.0, 1e-6);
+  EXPECT_NEAR(log.laser_pose->yaw, 10 * deg, 1e-6);
+  EXPECT_NEAR(log.entries[0].odometry->y, 2.0, 1e-9);  // the robot's pose
+  // FLASER lines say nothing of it; --laser-pose (LogReadOptions::laser_pose) does.
+  const std::string flaser_log = dir.write("f.clf", flaser(180, 2.5, 1.0, 2.0, 0.5, 10.0));
+  EXPECT_FALSE(readLog(flaser_log).laser_pose.has_value());
+  LogReadOptions options;
+  options.laser_pose = Pose2D{-0.04, 0.0, 0.0};
+  EXPECT_DOUBLE_EQ(readLog(flaser_log, options).laser_pose->x, -0.04);
+  EXPECT_DOUBLE_EQ(readLog(dir.file("mounted.log"), options).laser_pose->x, -0.04);
+  // A written log keeps it.
+  ScanLog mounted = log;
+  mounted.laser_pose = Pose2D{0.3, -0.1, -0.5};
+  writeCarmen(dir.file("w.log"), mounted);
+  const ScanLog back = readCarmen(dir.file("w.log"));
+  ASSERT_TRUE(back.laser_pose.has_value());
+  EXPECT_NEAR(back.laser_pose->x, 0.3, 1e-6);
+  EXPECT_NEAR(back.laser_pose->y, -0.1, 1e-6);
+  EXPECT_NEAR(back.laser_pose->yaw, -0.5, 1e-6);
+}
+
 TEST(Carmen, SharedLogsRead) {
   const std::string path = test::sharedDataset("intel/intel.clf");
   if (path.empty()) GTEST_SKIP() << "../shared/datasets/intel is absent";

@@ -69,6 +69,24 @@ TEST(Rosbag, AWrittenBagReadsBackWithBeamTimingAndOdometry) {
   EXPECT_NEAR(with_period.entries[1].scan.time_increment, 0.1 * 0.5 / (2 * M_PI), 1e-9);
 }
 
+// The laser's mounting is the static transform from the odometry's child frame (base_link) to
+// the scan's frame; a bag without one has none.
+TEST(Rosbag, TheMountingComesFromTheStaticTransforms) {
+  if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
+  test::TempDir dir;
+  ScanLog log = timedLog();
+  writeRosbag(dir.file("plain.bag"), log);
+  EXPECT_FALSE(readLog(dir.file("plain.bag")).laser_pose.has_value());
+  log.laser_pose = Pose2D{0.3, -0.1, 0.25};
+  writeRosbag(dir.file("mounted.bag"), log);
+  const ScanLog read = readLog(dir.file("mounted.bag"));
+  ASSERT_TRUE(read.laser_pose.has_value());
+  EXPECT_NEAR(read.laser_pose->x, 0.3, 1e-9);
+  EXPECT_NEAR(read.laser_pose->y, -0.1, 1e-9);
+  EXPECT_NEAR(read.laser_pose->yaw, 0.25, 1e-9);
+  EXPECT_NEAR(read.entries[2].odometry->x, 0.6, 1e-9);  // the robot's odometry is untouched
+}
+
 TEST(Rosbag, BeamTimingThatCannotBeUsedIsReportedAndDropped) {
   if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
   test::TempDir dir;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/trajectory.h"
 #include "temp_dir.h"
 
@@ -39,6 +40,39 @@ TEST(Relations, MotionIsTheSecondPoseInTheFrameOfTheFirst) {
   EXPECT_DOUBLE_EQ(relations[0].t2, 12.0);
   EXPECT_DOUBLE_EQ(relations[0].motion.x, 0.3);
   EXPECT_DOUBLE_EQ(relations[0].motion.yaw, 0.25);
+}
+
+}  // namespace
+}  // namespace contour_reg::io
+
+namespace contour_reg::io {
+namespace {
+
+// The robot's motion from the laser's and back; the covariance carried by the Jacobian of the
+// change, checked against finite differences.
+TEST(Mounting, RobotAndLaserMotionsAreOneChangeOfFrameAndItsCovarianceFollows) {
+  const Pose2D mounting{0.3, 0.1, 0.5}, laser{0.4, -0.2, 0.35};
+  const Pose2D robot = robotMotion(laser, mounting), back = laserMotion(robot, mounting);
+  EXPECT_NEAR(back.x, laser.x, 1e-12);
+  EXPECT_NEAR(back.y, laser.y, 1e-12);
+  EXPECT_NEAR(back.yaw, laser.yaw, 1e-12);
+  EXPECT_NEAR(robot.yaw, laser.yaw, 1e-12);  // a turn is a turn in either frame
+  // A turn in place of the laser moves the robot's centre: the laser 0.3 m ahead turning 90 deg.
+  const Pose2D spin = robotMotion({0.0, 0.0, M_PI / 2}, {0.3, 0.0, 0.0});
+  EXPECT_NEAR(spin.x, 0.3, 1e-12);
+  EXPECT_NEAR(spin.y, -0.3, 1e-12);
+  Eigen::Matrix3d numeric;
+  const double h = 1e-6;
+  for (int k = 0; k < 3; ++k) {
+    Pose2D plus = laser, minus = laser;
+    (k == 0 ? plus.x : k == 1 ? plus.y : plus.yaw) += h;
+    (k == 0 ? minus.x : k == 1 ? minus.y : minus.yaw) -= h;
+    const Pose2D a = robotMotion(plus, mounting), b = robotMotion(minus, mounting);
+    numeric.col(k) = Eigen::Vector3d(a.x - b.x, a.y - b.y, a.yaw - b.yaw) / (2 * h);
+  }
+  const Eigen::Matrix3d covariance = Eigen::Vector3d(4e-4, 1e-4, 3e-5).asDiagonal();
+  const Eigen::Matrix3d expected = numeric * covariance * numeric.transpose();
+  EXPECT_LT((robotCovariance(covariance, laser, mounting) - expected).norm(), 1e-9);
 }
 
 }  // namespace

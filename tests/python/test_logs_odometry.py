@@ -105,3 +105,21 @@ def test_bad_simulation_and_odometry_arguments_raise(bundled_log):
         cr.odometry(bundled_log, guess="gps")
     with pytest.raises(ValueError, match="N x 4"):
         cr.evaluate(np.zeros((3, 3)))
+
+
+def test_a_mounted_laser_gives_the_robots_trajectory(tmp_path):
+    mounted = cr.simulate(path="L", laser_pose=(0.3, 0.1, 0.5))
+    assert mounted.log.laser_pose == pytest.approx((0.3, 0.1, 0.5))
+    robot = cr.odometry(mounted.log, guess="odom")
+    laser = cr.odometry(mounted.log, guess="odom", frame="laser")
+    assert robot.frame == "robot" and laser.frame == "laser"
+    assert cr.evaluate(robot.trajectory, mounted.ground_truth)["end_point_percent"] < 1.0
+    assert cr.evaluate(laser.trajectory, mounted.ground_truth)["end_point_percent"] > 5.0
+    path = tmp_path / "mounted.clf"
+    cr.write_carmen(str(path), mounted.log)
+    assert cr.read_log(str(path)).laser_pose == pytest.approx((0.3, 0.1, 0.5), abs=1e-6)
+    assert cr.read_log(str(path), laser_pose=(0, 0, 0)).laser_pose == (0, 0, 0)
+    with pytest.raises(ValueError, match="laser_pose"):
+        cr.read_log(str(path), laser_pose=(0, 0))
+    with pytest.raises(ValueError, match="unknown frame"):
+        cr.odometry(mounted.log, frame="map")

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "contour_reg/io/pose2d.h"
 #include "log_assembly.h"
 #include "text_lines.h"
 
@@ -48,8 +49,9 @@ void fillRanges(LaserScan &scan, const std::vector<double> &values, double max_r
 // Parses one line into `entry` (laser lines) or `odometry` (ODOM lines).
 // Returns an empty string on success, a description of the problem otherwise;
 // `is_laser` / `is_odometry` tell what the line was.
+// ROBOTLASER1 lines also give the laser's pose on the robot (`laser_pose`).
 std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &entry, TimedPose &odometry,
-                      bool &is_laser, bool &is_odometry) {
+                      std::optional<Pose2D> &laser_pose, bool &is_laser, bool &is_odometry) {
   is_laser = is_odometry = false;
   const std::string_view type = f[0];
   std::vector<double> values;
@@ -97,8 +99,10 @@ std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &e
     scan.range_max = max_range;
     fillRanges(scan, values, max_range);
     if (type == "ROBOTLASER1") {
+      const auto laser = poseAt(f, next);
       entry.odometry = poseAt(f, next + 3);  // laser pose, then robot pose
-      next += 6 + 5;                         // poses, tv rv forward_safety side_safety turn_axis
+      if (laser && entry.odometry) laser_pose = between(*entry.odometry, *laser);
+      next += 6 + 5;  // poses, tv rv forward_safety side_safety turn_axis
     }
     if (!number(f, next, scan.stamp)) return "missing timestamp";
     is_laser = true;
@@ -134,8 +138,9 @@ ScanLog readCarmen(const std::string &path, const CarmenOptions &options) {
     if (fields.empty() || fields[0][0] == '#') continue;
     LogEntry entry;
     TimedPose odom{};
+    std::optional<Pose2D> laser_pose;
     bool is_laser = false, is_odometry = false;
-    std::string problem = parseLine(fields, options, entry, odom, is_laser, is_odometry);
+    std::string problem = parseLine(fields, options, entry, odom, laser_pose, is_laser, is_odometry);
     if (problem.empty() && is_laser && reader.lastLineUnterminated()) problem = "truncated last line";
     if (!problem.empty()) {
       log.report.add(path, reader.lineNumber(), std::string(fields[0].substr(0, 24)) + ": " + problem);
@@ -143,6 +148,7 @@ ScanLog readCarmen(const std::string &path, const CarmenOptions &options) {
     }
     if (is_laser) log.entries.push_back(std::move(entry));
     if (is_odometry) odometry.push_back(odom);
+    if (laser_pose && !log.laser_pose) log.laser_pose = laser_pose;
   }
   if (log.entries.empty())
     throw ReadError(path + ": no usable scan in " + std::to_string(log.report.lines) + " lines" +
@@ -163,6 +169,7 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
   for (const LogEntry &entry : log.entries) {
     const LaserScan &s = entry.scan;
     const Pose2D pose = entry.odometry.value_or(Pose2D{});
+    const Pose2D laser = compose(pose, log.laser_pose.value_or(Pose2D{}));
     const double max_range = s.range_max > 0.0 ? s.range_max : 80.0;
     if (entry.odometry)
       std::fprintf(file, "ODOM %.6f %.6f %.6f 0 0 0 %.6f sim %.6f\n", pose.x, pose.y, pose.yaw, s.stamp, s.stamp);
@@ -170,8 +177,8 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
                  s.angle_increment * static_cast<double>(s.ranges.size() > 0 ? s.ranges.size() - 1 : 0),
                  s.angle_increment, max_range, s.ranges.size());
     for (float r : s.ranges) std::fprintf(file, " %.4f", std::isfinite(r) ? static_cast<double>(r) : max_range);
-    std::fprintf(file, " 0 %.6f %.6f %.6f %.6f %.6f %.6f 0 0 0 0 0 %.6f sim %.6f\n", pose.x, pose.y, pose.yaw, pose.x,
-                 pose.y, pose.yaw, s.stamp, s.stamp);
+    std::fprintf(file, " 0 %.6f %.6f %.6f %.6f %.6f %.6f 0 0 0 0 0 %.6f sim %.6f\n", laser.x, laser.y, laser.yaw,
+                 pose.x, pose.y, pose.yaw, s.stamp, s.stamp);
   }
   const bool ok = std::fflush(file) == 0;
   std::fclose(file);

@@ -36,6 +36,7 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
     for (LogEntry &entry : log.entries)
       if (entry.scan.time_increment == 0.0)
         entry.scan.time_increment = beamInterval(options.scan_period, entry.scan.angle_increment);
+  if (options.laser_pose) log.laser_pose = options.laser_pose;
   return log;
 }
 

@@ -12,7 +12,12 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/LaserScan.h>
+#include <tf2_msgs/TFMessage.h>
 #endif
+
+#include <map>
+
+#include "contour_reg/io/pose2d.h"
 
 namespace contour_reg::io {
 
@@ -27,9 +32,47 @@ std::string firstTopicOfType(const rosbag::Bag &bag, const std::string &type) {
   return {};
 }
 
+std::vector<std::string> topicsOfType(const rosbag::Bag &bag, const std::string &type) {
+  std::vector<std::string> topics;
+  rosbag::View all(bag);
+  for (const rosbag::ConnectionInfo *connection : all.getConnections())
+    if (connection->datatype == type && std::find(topics.begin(), topics.end(), connection->topic) == topics.end())
+      topics.push_back(connection->topic);
+  return topics;
+}
+
+std::string frameName(std::string name) { return name.empty() || name[0] != '/' ? name : name.substr(1); }
+
 double yawOf(const geometry_msgs::Quaternion &q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
 }
+
+// The transforms of a bag's tf tree that do not move: each child frame's first pose in its
+// parent, planar part.
+struct TransformTree {
+  std::map<std::string, std::pair<std::string, Pose2D>> parent_of;  // child -> (parent, child in parent)
+
+  void add(const tf2_msgs::TFMessage &message) {
+    for (const geometry_msgs::TransformStamped &t : message.transforms) {
+      const Pose2D pose{t.transform.translation.x, t.transform.translation.y, yawOf(t.transform.rotation)};
+      if (std::isfinite(pose.x + pose.y + pose.yaw))
+        parent_of.emplace(frameName(t.child_frame_id), std::make_pair(frameName(t.header.frame_id), pose));
+    }
+  }
+
+  // `frame`'s pose in `base`, through its chain of parents; none when the chain does not reach it.
+  std::optional<Pose2D> poseIn(const std::string &base, std::string frame) const {
+    Pose2D pose{};
+    for (std::size_t depth = 0; depth < 32; ++depth) {
+      if (frame == base) return pose;
+      const auto up = parent_of.find(frame);
+      if (up == parent_of.end()) return std::nullopt;
+      pose = compose(up->second.second, pose);
+      frame = up->second.first;
+    }
+    return std::nullopt;
+  }
+};
 
 LogEntry toEntry(const sensor_msgs::LaserScan &message, double max_range) {
   LogEntry entry;
@@ -65,6 +108,8 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   ScanLog log;
   log.source = path;
   std::vector<detail::TimedPose> odometry;
+  TransformTree tree;
+  std::string scan_frame, base_frame;  // of the first scan and the first odometry message
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
     const std::string scan_topic =
@@ -74,6 +119,8 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
     if (scan_topic.empty()) throw ReadError(path + ": no sensor_msgs/LaserScan topic in the bag");
     std::vector<std::string> topics{scan_topic};
     if (!odometry_topic.empty()) topics.push_back(odometry_topic);
+    const std::vector<std::string> tf_topics = topicsOfType(bag, "tf2_msgs/TFMessage");
+    topics.insert(topics.end(), tf_topics.begin(), tf_topics.end());
     rosbag::View view(bag, rosbag::TopicQuery(topics));
     std::size_t index = 0;
     for (const rosbag::MessageInstance &message : view) {
@@ -91,6 +138,7 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
                      scan->angle_increment == 0.0f) {
             log.report.add(where, index, "bad beam geometry");
           } else {
+            if (log.entries.empty()) scan_frame = frameName(scan->header.frame_id);
             log.entries.push_back(toEntry(*scan, options.max_range));
             const std::string timing = beamTimingProblem(*scan);
             if (timing.empty())
@@ -98,7 +146,10 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
             else
               log.report.add(where, index, timing + ": the scan is read without beam timing");
           }
+        } else if (message.getTopic() != odometry_topic) {
+          if (auto transforms = message.instantiate<tf2_msgs::TFMessage>()) tree.add(*transforms);
         } else if (auto odom = message.instantiate<nav_msgs::Odometry>()) {
+          if (base_frame.empty()) base_frame = frameName(odom->child_frame_id);
           const auto &pose = odom->pose.pose;
           const Pose2D p{pose.position.x, pose.position.y, yawOf(pose.orientation)};
           if (std::isfinite(p.x + p.y + p.yaw))
@@ -118,6 +169,8 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   if (log.entries.empty())
     throw ReadError(path + ": no usable scan in " + std::to_string(log.report.lines) + " messages" +
                     (log.report.problems.empty() ? "" : " (first problem: " + log.report.problems.front() + ")"));
+  // The mounting: the scan's frame in the robot's, the odometry's child frame (base_link without odometry).
+  if (!scan_frame.empty()) log.laser_pose = tree.poseIn(base_frame.empty() ? "base_link" : base_frame, scan_frame);
   detail::finishLog(log, std::move(odometry));
   return log;
 }
@@ -125,6 +178,20 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
 void writeRosbag(const std::string &path, const ScanLog &log) {
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Write);
+    if (log.laser_pose && !log.entries.empty()) {
+      // The mounting, as a robot's static transform publisher gives it.
+      geometry_msgs::TransformStamped mounting;
+      mounting.header.stamp = std::max(ros::Time(std::max(0.0, log.entries.front().scan.stamp)), ros::TIME_MIN);
+      mounting.header.frame_id = "base_link";
+      mounting.child_frame_id = "laser";
+      mounting.transform.translation.x = log.laser_pose->x;
+      mounting.transform.translation.y = log.laser_pose->y;
+      mounting.transform.rotation.z = std::sin(0.5 * log.laser_pose->yaw);
+      mounting.transform.rotation.w = std::cos(0.5 * log.laser_pose->yaw);
+      tf2_msgs::TFMessage message;
+      message.transforms.push_back(mounting);
+      bag.write("/tf_static", mounting.header.stamp, message);
+    }
     std::uint32_t sequence = 0;
     for (const LogEntry &entry : log.entries) {
       const LaserScan &scan = entry.scan;
@@ -182,13 +249,13 @@ bool rosbagSupported() { return false; }
 ScanLog readRosbag(const std::string &path, const RosbagOptions &) {
   throw ReadError(path +
                   ": this build of contour_reg cannot read ROS bags (install librosbag-storage-dev, "
-                  "libsensor-msgs-dev and libnav-msgs-dev, then rebuild)");
+                  "libsensor-msgs-dev, libnav-msgs-dev and libtf2-msgs-dev, then rebuild)");
 }
 
 void writeRosbag(const std::string &path, const ScanLog &) {
   throw ReadError(path +
                   ": this build of contour_reg cannot write ROS bags (install librosbag-storage-dev, "
-                  "libsensor-msgs-dev and libnav-msgs-dev, then rebuild)");
+                  "libsensor-msgs-dev, libnav-msgs-dev and libtf2-msgs-dev, then rebuild)");
 }
 
 #endif

@@ -32,9 +32,10 @@ std::vector<std::vector<double>> readTable(const std::string &path, std::size_t 
 
 }  // namespace
 
-void writeTum(const std::string &path, const Trajectory &trajectory) {
+void writeTum(const std::string &path, const Trajectory &trajectory, const std::string &comment) {
   std::FILE *file = std::fopen(path.c_str(), "w");
   if (!file) throw ReadError(path + ": cannot write");
+  if (!comment.empty()) std::fprintf(file, "# %s\n", comment.c_str());
   std::fprintf(file, "# timestamp x y z qx qy qz qw\n");
   for (const StampedPose &p : trajectory)
     std::fprintf(file, "%.6f %.6f %.6f 0 0 0 %.9f %.9f\n", p.stamp, p.pose.x, p.pose.y, std::sin(0.5 * p.pose.yaw),

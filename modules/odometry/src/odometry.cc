@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "contour_reg/io/pose2d.h"
 
@@ -15,10 +16,21 @@ using io::toPose;
 
 namespace {
 
-// Wheel odometry between scans a and b of the log, when both have it.
-std::optional<io::Pose2D> wheelMotion(const io::LogEntry &a, const io::LogEntry &b) {
+// The laser's motion between scans a and b of the log by the wheel odometry, when both have it.
+std::optional<io::Pose2D> wheelMotion(const io::ScanLog &log, const io::LogEntry &a, const io::LogEntry &b) {
   if (!a.odometry || !b.odometry) return std::nullopt;
-  return between(*a.odometry, *b.odometry);
+  const io::Pose2D robot = between(*a.odometry, *b.odometry);
+  return log.laser_pose ? io::laserMotion(robot, *log.laser_pose) : robot;
+}
+
+// The run's trajectory and steps, found in the laser's frame, in the robot's.
+void toRobotFrame(OdometryRun &run, const io::Pose2D &laser_pose) {
+  for (io::StampedPose &p : run.trajectory) p.pose = io::robotMotion(p.pose, laser_pose);
+  for (OdometryStep &step : run.steps) {
+    step.covariance = io::robotCovariance(step.covariance, step.motion, laser_pose);
+    step.motion = io::robotMotion(step.motion, laser_pose);
+  }
+  run.frame = Frame::kRobot;
 }
 
 }  // namespace
@@ -27,7 +39,7 @@ Twist2D twistOver(const io::Pose2D &motion, double dt) { return {motion.x / dt, 
 
 std::optional<Twist2D> wheelTwistOverSweep(const io::ScanLog &log, std::size_t k) {
   if (k + 1 >= log.entries.size()) return std::nullopt;
-  const auto wheel = wheelMotion(log.entries[k], log.entries[k + 1]);
+  const auto wheel = wheelMotion(log, log.entries[k], log.entries[k + 1]);
   const double dt = log.entries[k + 1].scan.stamp - log.entries[k].scan.stamp;
   if (!wheel || !(dt > 1e-3)) return std::nullopt;
   return twistOver(*wheel, dt);
@@ -64,7 +76,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     // The previous motion scaled to this interval; no prediction across stamp jumps.
     const double velocity_scale = velocity_dt > 1e-3 ? std::clamp(dt / velocity_dt, 0.0, 3.0) : 0.0;
     const io::Pose2D by_velocity = compose(previous, scaled(velocity_motion, velocity_scale));
-    const auto wheel = wheelMotion(entries[k - 1], entries[k]);
+    const auto wheel = wheelMotion(log, entries[k - 1], entries[k]);
     io::Pose2D expected = previous;
     if (options.guess == GuessSource::kOdometry && wheel) expected = compose(previous, *wheel);
     if (options.guess == GuessSource::kConstantVelocity) expected = by_velocity;
@@ -142,7 +154,19 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     }
     if (options.progress) options.progress(k + 1, entries.size());
   }
+  if (options.frame == Frame::kRobot && log.laser_pose) toRobotFrame(run, *log.laser_pose);
   return run;
+}
+
+std::string frameDescription(const OdometryRun &run, const io::ScanLog &log) {
+  char text[160];
+  if (run.frame == Frame::kRobot && log.laser_pose)
+    std::snprintf(text, sizeof text,
+                  "frame: robot (base_link); the laser is mounted at x %.3f m, y %.3f m, yaw %.2f deg",
+                  log.laser_pose->x, log.laser_pose->y, log.laser_pose->yaw * 180.0 / M_PI);
+  else
+    std::snprintf(text, sizeof text, "frame: laser%s", log.laser_pose ? "" : " (the log gives no mounting)");
+  return text;
 }
 
 }  // namespace contour_reg::odometry

@@ -19,6 +19,7 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
   SimulatedRun run;
   run.path_length = pathLength(waypoints);
   run.log.source = "simulation";
+  run.log.laser_pose = settings.laser_pose;
   if (waypoints.size() < 2 || !(settings.rate > 0.0) || !(settings.speed > 0.0)) return run;
   std::mt19937 rng(settings.seed);
   std::normal_distribution<double> unit(0.0, 1.0);
@@ -27,6 +28,9 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
   const double spacing = settings.speed * period;
   const auto scans = static_cast<std::size_t>(std::ceil(run.path_length / spacing - 1e-9)) + 1;
   const LidarModel &lidar = settings.lidar;
+  // The LIDAR's pose when the robot is at `robot`.
+  const Eigen::Isometry2d mounting(io::toMatrix(settings.laser_pose));
+  auto sensorAt = [&](const Eigen::Isometry2d &robot) -> Eigen::Isometry2d { return robot * mounting; };
   Eigen::Isometry2d previous_truth = poseAlongPath(waypoints, 0.0, settings.turn_radius);
   Eigen::Isometry2d odometry = previous_truth;
   for (std::size_t k = 0; k < scans; ++k) {
@@ -35,15 +39,15 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
     const Eigen::Isometry2d truth = poseAlongPath(waypoints, s, settings.turn_radius);
     io::LogEntry entry;
     if (settings.motion == Motion::kStopAndGo || k + 1 == scans) {
-      entry.scan = simulateScan(world, truth, lidar, rng);
+      entry.scan = simulateScan(world, sensorAt(truth), lidar, rng);
     } else {
       // The LIDAR turns once per period; beam n fires at its bearing's share of a turn.
       const double beam_time = beamInterval(period, lidar.angleIncrement());
       entry.scan = simulateScan(
           world,
           [&](std::size_t n) {
-            return poseAlongPath(waypoints, s + settings.speed * beam_time * static_cast<double>(n),
-                                 settings.turn_radius);
+            return sensorAt(poseAlongPath(waypoints, s + settings.speed * beam_time * static_cast<double>(n),
+                                          settings.turn_radius));
           },
           lidar, rng);
       entry.scan.time_increment = beam_time;

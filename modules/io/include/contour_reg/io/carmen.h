@@ -5,7 +5,9 @@
 /// FLASER lines carry no beam angles; beam i is taken at -90 deg + i * step with
 /// step = 180 deg / (n - n mod 2) (1 deg for 180/181 beams, 0.5 deg for 360/361), the
 /// GMapping convention. Readings at or above `max_range` are no-return. Laser lines
-/// without a pose (RAWLASER) get their odometry interpolated from ODOM lines. Scans are
+/// without a pose (RAWLASER) get their odometry interpolated from ODOM lines. The laser's
+/// pose against the robot's in the first ROBOTLASER1 line is the log's mounting
+/// (ScanLog::laser_pose); FLASER lines give none. Scans are
 /// returned in stamp order. A bad or truncated line is skipped and reported with its file
 /// and line number; a file with no usable scan is a ReadError.
 

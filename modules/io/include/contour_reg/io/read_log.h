@@ -3,6 +3,7 @@
 /// One entry point for every scan source: a CARMEN log (`.clf`, `.log`, `.gz`, anything
 /// else), a ROS 1 bag (`.bag`) or a folder of PCD scans (a directory).
 
+#include <optional>
 #include <string>
 
 #include "contour_reg/io/scan_log.h"
@@ -19,10 +20,14 @@ struct LogReadOptions {
   /// as sensor_msgs orders them) scan_period * angle_increment / 2 pi apart, the first at the
   /// scan's stamp (LaserScan::time_increment). 0: no timing.
   double scan_period = 0.0;
+  /// The laser's pose on the robot (base_link -> laser; x, y in m, yaw in rad), over what the
+  /// log says (ScanLog::laser_pose: ROBOTLASER1 lines, a bag's tf).
+  std::optional<Pose2D> laser_pose;
 };
 
 /// Reads `path` with the reader its kind calls for, then gives scans without beam timing
-/// the timing of `scan_period`. Throws ReadError naming the file.
+/// the timing of `scan_period` and the log the mounting `laser_pose` when set. Throws
+/// ReadError naming the file.
 ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
 
 }  // namespace contour_reg::io

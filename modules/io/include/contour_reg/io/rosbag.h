@@ -1,14 +1,17 @@
 #pragma once
 /// @file rosbag.h
-/// ROS 1 bags (format 2.0, plain, BZ2 or LZ4 chunks) with sensor_msgs/LaserScan and
-/// nav_msgs/Odometry messages, read through Debian's rosbag_storage library.
+/// ROS 1 bags (format 2.0, plain, BZ2 or LZ4 chunks) with sensor_msgs/LaserScan,
+/// nav_msgs/Odometry and tf2_msgs/TFMessage messages, read through Debian's rosbag_storage library.
 ///
 /// A scan's stamp is its header stamp; its odometry is the Odometry pose interpolated at
 /// that stamp. Ranges outside [range_min, min(range_max, max_range)) become NaN. The beam
 /// timing is the message's time_increment (LaserScan::time_increment; sensor_msgs' stamp is
 /// the first beam's time); a negative one, or one whose sweep is longer than scan_time, is
-/// reported and the scan read without timing. A message that cannot be decoded is skipped
-/// and reported with its topic and index.
+/// reported and the scan read without timing. The laser's mounting (ScanLog::laser_pose) is
+/// the pose of the first scan's frame in the odometry's child frame (base_link when the bag
+/// has no odometry), through the chain of the tf2_msgs/TFMessage topics' transforms (each
+/// frame's first). A message that cannot be decoded is skipped and reported with its topic
+/// and index.
 
 #include <string>
 
@@ -34,8 +37,8 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options = {});
 /// scan a sensor_msgs/LaserScan on /scan (frame "laser"; stamp = first beam, time_increment
 /// and scan_time = one turn of the LIDAR, range_max the largest finite range; invalid beams +inf), and
 /// every odometry pose a nav_msgs/Odometry on /odom ("odom" -> "base_link") at the scan's
-/// stamp. Throws ReadError naming the file when it cannot be written or this build has no
-/// bag support.
+/// stamp, and the mounting, when the log has one, on /tf_static ("base_link" -> "laser"). Throws ReadError naming the
+/// file when it cannot be written or this build has no bag support.
 void writeRosbag(const std::string &path, const ScanLog &log);
 
 }  // namespace contour_reg::io

@@ -38,6 +38,9 @@ struct ScanLog {
   std::string source;
   std::vector<LogEntry> entries;  ///< in stamp order
   ReadReport report;
+  /// The laser's pose in the robot's frame (base_link -> laser), when the log says where the
+  /// laser is mounted: scans are in the laser's frame, odometry is the robot's.
+  std::optional<Pose2D> laser_pose;
 };
 
 /// Thrown when a file cannot be used at all (missing, unreadable, no usable scan).

@@ -22,7 +22,8 @@ struct Relation {
   Pose2D motion;
 };
 
-void writeTum(const std::string &path, const Trajectory &trajectory);
+/// Writes a TUM file; a non-empty `comment` becomes a `#` line at its head (readTum skips it).
+void writeTum(const std::string &path, const Trajectory &trajectory, const std::string &comment = {});
 /// Reads a TUM file; the yaw is taken from the quaternion. Throws ReadError naming file and line.
 Trajectory readTum(const std::string &path);
 /// Reads a relations file. Throws ReadError naming file and line.

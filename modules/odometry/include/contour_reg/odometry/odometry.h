@@ -24,8 +24,19 @@ enum class GuessSource {
   kConstantVelocity,  ///< the previous motion, scaled by the time between scans
 };
 
+/// The frame a run's trajectory and steps are given in.
+enum class Frame {
+  kRobot,  ///< the robot's (base_link), where relations, wheel odometry and ROS consumers speak
+  kLaser,  ///< the laser's, where the scans are taken
+};
+
 struct OdometryOptions {
   GuessSource guess = GuessSource::kZero;
+  /// The frame of the trajectory and the steps. The scans are registered in the laser's frame
+  /// and the wheel odometry is brought into it through the log's mounting (ScanLog::laser_pose);
+  /// kRobot gives the result in the robot's frame when the log knows the mounting. A log without
+  /// one is taken to have the laser at the robot's centre, and its result is the laser's.
+  Frame frame = Frame::kRobot;
   bool keyframes = false;
   double keyframe_distance = 0.3;  ///< m of motion from the keyframe that starts a new one
   double keyframe_angle = 0.2;     ///< rad of turn from the keyframe that starts a new one
@@ -72,18 +83,22 @@ struct OdometryRun {
   io::Trajectory trajectory;        ///< one pose per scan, the first at the origin
   std::vector<OdometryStep> steps;  ///< one per registration, in order
   OdometryStats stats;
+  Frame frame = Frame::kLaser;  ///< the frame of trajectory and steps
 };
 
-/// The log's own wheel odometry as a trajectory, starting at the origin with the first scan
-/// that has it; scans without it are left out.
+/// One line that says which frame a run's trajectory is in, for the head of its file.
+std::string frameDescription(const OdometryRun &run, const io::ScanLog &log);
+
+/// The log's own wheel odometry as a trajectory in the robot's frame, starting at the origin
+/// with the first scan that has it; scans without it are left out.
 io::Trajectory wheelOdometry(const io::ScanLog &log);
 
 /// The constant twist that makes `motion` in `dt` s (dt > 0).
 Twist2D twistOver(const io::Pose2D &motion, double dt);
 
-/// The motion over scan k's sweep by the wheel odometry: its increment from scan k's stamp to
-/// scan k+1's (the interval the sweep lies in) as a constant twist; none when either scan has
-/// no odometry or k is the last scan.
+/// The laser's motion over scan k's sweep by the wheel odometry: its increment from scan k's
+/// stamp to scan k+1's (the interval the sweep lies in), brought to the laser by the log's
+/// mounting, as a constant twist; none when either scan has no odometry or k is the last scan.
 std::optional<Twist2D> wheelTwistOverSweep(const io::ScanLog &log, std::size_t k);
 
 /// Runs odometry over `log` with `matcher`. A registration that fails is retried from the

@@ -27,11 +27,12 @@ struct RunSettings {
   double turn_radius = 0.4;      ///< m, see poseAlongPath
   double odometry_noise = 0.02;  ///< relative standard deviation of the wheel odometry increments
   unsigned seed = 1;             ///< fixes range noise, dropout and odometry noise
+  io::Pose2D laser_pose;         ///< the LIDAR's pose on the robot (base_link -> laser)
 };
 
 struct SimulatedRun {
-  io::ScanLog log;              ///< scans stamped k / rate s, wheel odometry at each
-  io::Trajectory ground_truth;  ///< the true sensor pose at each scan stamp
+  io::ScanLog log;              ///< scans stamped k / rate s, wheel odometry at each, the mounting
+  io::Trajectory ground_truth;  ///< the robot's true pose at each scan stamp
   double path_length = 0.0;     ///< m
 };
 
