@@ -35,6 +35,7 @@ struct CompareOptions {
   std::string out;
   std::string guess = "zero", frame = "robot";
   bool keyframes = false;
+  std::size_t local_map = 0;
   bool deskew = true;
   unsigned jobs = 0;
   double local_dt = 5.0;
@@ -173,6 +174,7 @@ void runJob(const CompareOptions &options, const Input &input, const std::string
   odometry::OdometryOptions run_options;
   run_options.guess = guessSource(options.guess);
   run_options.keyframes = options.keyframes;
+  run_options.local_map_keyframes = options.local_map;
   run_options.deskew = options.deskew;
   run_options.frame = frameOf(options.frame);
   run_options.progress = progress;
@@ -321,6 +323,10 @@ void addCompareCommand(CLI::App &app) {
   addGuessOption(*command, options->guess);
   addFrameOption(*command, options->frame);
   command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
+  command
+      ->add_option("--local-map", options->local_map,
+                   "Match against a local map of the last N keyframes, not the previous scan (0: off)")
+      ->capture_default_str();
   command->add_flag("--deskew,!--no-deskew", options->deskew,
                     "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
                     "the log has it (on by default)");

@@ -20,7 +20,7 @@ struct OdometryCommandOptions {
   std::string input, output, method = "contour", guess = "zero", frame = "robot";
   bool odom_guess = false, keyframes = false, deskew = true;
   std::string debug_dir, covariance;
-  std::size_t debug_every = 0;
+  std::size_t debug_every = 0, local_map = 0;
   double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
   io::LogReadOptions read;
   MethodOptions methods;
@@ -51,6 +51,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   odometry::OdometryOptions run_options;
   run_options.guess = guessSource(options.odom_guess ? "odom" : options.guess);
   run_options.keyframes = options.keyframes;
+  run_options.local_map_keyframes = options.local_map;
   run_options.deskew = options.deskew;
   run_options.frame = frameOf(options.frame);
   run_options.keyframe_distance = options.keyframe_distance;
@@ -97,6 +98,10 @@ void addOdometryCommand(CLI::App &app) {
   addFrameOption(*command, options->frame);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
   command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
+  command
+      ->add_option("--local-map", options->local_map,
+                   "Match against a local map of the last N keyframes, not the previous scan (0: off)")
+      ->capture_default_str();
   command->add_flag("--deskew,!--no-deskew", options->deskew,
                     "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
                     "the log has it (on by default; docs/algorithm.md)");

@@ -16,12 +16,14 @@ odometry::GuessSource guessSource(const std::string &guess) {
 }
 
 odometry::OdometryRun runOdometry(const io::ScanLog &log, const std::string &method, const std::string &guess,
-                                  bool keyframes, bool deskew, const std::string &frame, const py::kwargs &settings) {
+                                  bool keyframes, std::size_t local_map, bool deskew, const std::string &frame,
+                                  const py::kwargs &settings) {
   if (frame != "robot" && frame != "laser") throw py::value_error("unknown frame '" + frame + "' (robot, laser)");
   odometry::OdometryOptions options;
   options.frame = frame == "laser" ? odometry::Frame::kLaser : odometry::Frame::kRobot;
   options.guess = guessSource(guess);
   options.keyframes = keyframes;
+  options.local_map_keyframes = local_map;
   options.deskew = deskew;
   std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, matcherSettings(settings));
   if (!matcher) throw py::value_error("unknown method '" + method + "'; methods() lists them");
@@ -76,9 +78,10 @@ void bindOdometry(py::module_ &m) {
       });
 
   m.def("odometry", &runOdometry, py::arg("log"), py::arg("method") = "contour", py::arg("guess") = "zero",
-        py::arg("keyframes") = false, py::arg("deskew") = true, py::arg("frame") = "robot",
+        py::arg("keyframes") = false, py::arg("local_map") = 0, py::arg("deskew") = true, py::arg("frame") = "robot",
         "Laser odometry over a Log with `method` (see methods()): each scan registered against the previous one "
-        "(or the last keyframe), from a guess of 'zero', 'odom' (the log's wheel odometry) or 'velocity'. A failed "
+        "(or the last keyframe, or a local map of the last `local_map` keyframes), from a guess of 'zero', 'odom' (the "
+        "log's wheel odometry) or 'velocity'. A failed "
         "registration is retried from the constant-velocity prediction, then bridged. deskew: scans with beam "
         "timing are deskewed by the motion over each (the wheel odometry when the log has it). frame: 'robot' gives "
         "the robot's trajectory when the log knows the laser's mounting (Log.laser_pose), 'laser' the laser's. "

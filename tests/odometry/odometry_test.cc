@@ -184,6 +184,28 @@ TEST(Odometry, KeyframesGiveATrajectoryAsGood) {
   EXPECT_LT(evaluation::endPointError(evaluation::associate(run.trajectory, s.truth)).error, 0.05);
 }
 
+// Against a local map of the last three keyframes, over the L path of the office (each
+// keyframe reached after 0.3 m or 11.5 deg): no failure, the end point as close.
+TEST(Odometry, ALocalMapGivesATrajectoryAsGood) {
+  const simulation::SimulatedRun run =
+      simulation::simulateRun(simulation::makeOfficeWorld(), simulation::officePath("L"), {});
+  auto matcher = makeScanMatcher("contour");
+  OdometryOptions options;
+  const OdometryRun scan_to_scan = runOdometry(run.log, *matcher, options);
+  options.local_map_keyframes = 3;
+  const OdometryRun mapped = runOdometry(run.log, *matcher, options);
+  EXPECT_EQ(mapped.stats.failures, 0u);
+  std::size_t against_older = 0;  // registrations against a keyframe before the previous scan
+  for (const OdometryStep &step : mapped.steps) against_older += step.reference + 1 < step.scan;
+  EXPECT_GT(against_older, mapped.steps.size() / 4);
+  const double mapped_error =
+      evaluation::endPointError(evaluation::associate(mapped.trajectory, run.ground_truth)).percent;
+  const double chained_error =
+      evaluation::endPointError(evaluation::associate(scan_to_scan.trajectory, run.ground_truth)).percent;
+  EXPECT_LT(mapped_error, 0.5);  // % of the path
+  EXPECT_LT(mapped_error, 2.0 * chained_error + 0.1);
+}
+
 TEST(Odometry, AFailedScanIsCountedAndBridgedByTheLastMotionNotChained) {
   Sequence s = roomSequence(12, 0.0);
   for (float &r : s.log.entries[6].scan.ranges) r = std::nanf("");

@@ -123,3 +123,10 @@ def test_a_mounted_laser_gives_the_robots_trajectory(tmp_path):
         cr.read_log(str(path), laser_pose=(0, 0))
     with pytest.raises(ValueError, match="unknown frame"):
         cr.odometry(mounted.log, frame="map")
+
+
+def test_a_local_map_odometry_follows_the_truth(s_run):
+    run = cr.odometry(s_run.log, local_map=3)
+    assert run.failures == 0
+    assert any(step.reference + 1 < step.scan for step in run.steps)
+    assert cr.evaluate(run.trajectory, s_run.ground_truth)["end_point_percent"] < 1.0

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "contour_reg/io/pose2d.h"
+#include "contour_reg/odometry/local_map.h"
 
 namespace contour_reg::odometry {
 
@@ -67,8 +68,21 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   std::size_t keyframe = 0;
   // Each scan's motion over its sweep, fixed when the scan is first matched (the first has none).
   std::vector<Twist2D> twists(entries.size());
+  // The local map: its keyframes (oldest first) and the scan drawn of them at the newest.
+  const bool mapping = options.local_map_keyframes > 0;
+  std::vector<std::size_t> map_keyframes{0};
+  LaserScan map;
+  auto redrawMap = [&]() {
+    std::vector<MapKeyframe> keyframes;
+    for (std::size_t j : map_keyframes) keyframes.push_back({&entries[j].scan, twists[j], poses[j]});
+    map = renderLocalMap(keyframes);
+  };
+  if (mapping) redrawMap();
   for (std::size_t k = 1; k < entries.size(); ++k) {
-    const std::size_t reference = options.keyframes ? keyframe : k - 1;
+    const std::size_t reference = (options.keyframes || mapping) ? keyframe : k - 1;
+    // The scan registered against: the reference scan, or the map drawn at it (deskewed already).
+    const LaserScan &target = mapping ? map : entries[reference].scan;
+    const Twist2D target_twist = mapping ? Twist2D{} : twists[reference];
     const io::Pose2D previous = poses[k - 1];
     const double dt = entries[k].scan.stamp - entries[k - 1].scan.stamp;
 
@@ -90,16 +104,15 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       twists[k] = *wheel_twist;
     else if (deskewing && velocity_dt > 1e-3)
       twists[k] = twistOver(velocity_motion, velocity_dt);
-    MatchResult match =
-        matcher.match(entries[reference].scan, entries[k].scan, toMatrix(guess), twists[reference], twists[k]);
+    MatchResult match = matcher.match(target, entries[k].scan, toMatrix(guess), target_twist, twists[k]);
     // A failure gets a second try from the constant-velocity prediction when that is a
     // different guess (a turn or a drive that goes on, where the first guess was "no motion").
     const io::Pose2D velocity_guess = between(poses[reference], by_velocity);
     const io::Pose2D guess_gap = between(guess, velocity_guess);
     if (!match.converged && options.retry_with_velocity && velocity_scale > 0.0 &&
         (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05)) {
-      const MatchResult retry = matcher.match(entries[reference].scan, entries[k].scan, toMatrix(velocity_guess),
-                                              twists[reference], twists[k]);
+      const MatchResult retry =
+          matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_twist, twists[k]);
       const double first_ms = match.milliseconds;
       if (retry.converged) {
         match = retry;
@@ -111,8 +124,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     // interval, rather than the last one.
     if (deskewing && !by_wheel && match.converged && dt > 1e-3 && reference == k - 1) {
       const Twist2D better = twistOver(toPose(match.transform), dt);
-      const MatchResult again =
-          matcher.match(entries[reference].scan, entries[k].scan, match.transform, twists[reference], better);
+      const MatchResult again = matcher.match(target, entries[k].scan, match.transform, target_twist, better);
       const double both_ms = match.milliseconds + again.milliseconds;
       if (again.converged) {
         match = again;
@@ -146,11 +158,18 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     velocity_motion = between(previous, pose);
     velocity_dt = dt;
 
-    if (options.keyframes) {
+    if (options.keyframes || mapping) {
       const io::Pose2D from_keyframe = between(poses[keyframe], pose);
       if (!match.converged || std::hypot(from_keyframe.x, from_keyframe.y) >= options.keyframe_distance ||
-          std::abs(from_keyframe.yaw) >= options.keyframe_angle)
+          std::abs(from_keyframe.yaw) >= options.keyframe_angle) {
         keyframe = k;
+        if (mapping) {
+          if (!match.converged) map_keyframes.clear();  // a bridged pose is no place to draw a map from
+          map_keyframes.push_back(k);
+          if (map_keyframes.size() > options.local_map_keyframes) map_keyframes.erase(map_keyframes.begin());
+          redrawMap();
+        }
+      }
     }
     if (options.progress) options.progress(k + 1, entries.size());
   }

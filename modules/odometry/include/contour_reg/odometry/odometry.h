@@ -40,6 +40,10 @@ struct OdometryOptions {
   bool keyframes = false;
   double keyframe_distance = 0.3;  ///< m of motion from the keyframe that starts a new one
   double keyframe_angle = 0.2;     ///< rad of turn from the keyframe that starts a new one
+  /// > 0: each scan is registered against a local map of the last this many keyframes
+  /// (local_map.h), keyframes taken as with `keyframes`; a failed registration starts the map
+  /// anew from its scan. 0: against the previous scan (or the last keyframe).
+  std::size_t local_map_keyframes = 0;
   /// A registration that fails from the guess is tried once more from the constant-velocity
   /// prediction (when that differs); only if both fail does the scan count as failed.
   bool retry_with_velocity = true;
