@@ -325,8 +325,9 @@ void addCompareCommand(CLI::App &app) {
   command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
   command
       ->add_option("--local-map", options->local_map,
-                   "Match against a local map of the last N keyframes, not the previous scan (0: off)")
-      ->capture_default_str();
+                   "Match against a local map of the last N keyframes, not the previous scan (0-100, 0: off)")
+      ->capture_default_str()
+      ->check(inRange(0, 100));
   command->add_flag("--deskew,!--no-deskew", options->deskew,
                     "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
                     "the log has it (on by default)");
