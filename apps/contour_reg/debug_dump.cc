@@ -13,19 +13,31 @@ namespace contour_reg::cli {
 
 std::vector<std::string> DebugDumper::dumpPair(const io::ScanLog &log, std::size_t target, std::size_t source,
                                                const std::vector<std::string> &methods) const {
+  return dump(log, log.entries[target].scan, "scan " + std::to_string(target),
+              std::to_string(target) + "_" + std::to_string(source), source, methods);
+}
+
+std::vector<std::string> DebugDumper::dumpMapPair(const io::ScanLog &log, const LaserScan &map, std::size_t keyframe,
+                                                  std::size_t source) const {
+  return dump(log, map, "the local map at scan " + std::to_string(keyframe),
+              "map" + std::to_string(keyframe) + "_" + std::to_string(source), source, {});
+}
+
+std::vector<std::string> DebugDumper::dump(const io::ScanLog &log, const LaserScan &a, const std::string &target_name,
+                                           const std::string &stem, std::size_t source,
+                                           const std::vector<std::string> &methods) const {
   namespace fs = std::filesystem;
-  const LaserScan &a = log.entries[target].scan, &b = log.entries[source].scan;
+  const LaserScan &b = log.entries[source].scan;
   const ContourFeatures fa = extractContourFeatures(a, settings_.contour),
                         fb = extractContourFeatures(b, settings_.contour);
   std::mt19937 rng(42);  // ContourRegistration's default seed
   const RegistrationResult result = registerContours(fb, fa, settings_.registration, rng);
-  const std::string stem = std::to_string(target) + "_" + std::to_string(source);
   std::vector<std::string> written{(fs::path(folder_) / ("scan_" + std::to_string(source) + ".png")).string(),
                                    (fs::path(folder_) / ("pair_" + stem + ".png")).string()};
-  char title[128];
+  char title[160];
   std::snprintf(title, sizeof title, "scan %zu (stamp %.3f s)", source, b.stamp);
   drawing::writeImage(written[0], drawing::drawScan(b, fb, settings_.contour, title));
-  std::snprintf(title, sizeof title, "scan %zu (source) onto scan %zu (target)", source, target);
+  std::snprintf(title, sizeof title, "scan %zu (source) onto %s (target)", source, target_name.c_str());
   drawing::writeImage(written[1], drawing::drawPair(a, b, fa, fb, result, title));
   if (b.time_increment > 0.0) {
     // The motion over the source's sweep, as the odometry deskews it: the wheel odometry's when

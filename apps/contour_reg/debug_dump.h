@@ -21,7 +21,17 @@ class DebugDumper {
   std::vector<std::string> dumpPair(const io::ScanLog &log, std::size_t target, std::size_t source,
                                     const std::vector<std::string> &methods = {}) const;
 
+  /// The same for `source` registered against the local map drawn at keyframe `keyframe`:
+  /// pair_map<keyframe>_<source>.png shows `map` as the target.
+  std::vector<std::string> dumpMapPair(const io::ScanLog &log, const LaserScan &map, std::size_t keyframe,
+                                       std::size_t source) const;
+
  private:
+  // `a` is the target, named `target_name`, `stem` names the pair's files.
+  std::vector<std::string> dump(const io::ScanLog &log, const LaserScan &a, const std::string &target_name,
+                                const std::string &stem, std::size_t source,
+                                const std::vector<std::string> &methods) const;
+
   std::string folder_;
   odometry::MatcherSettings settings_;
 };

@@ -62,9 +62,14 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   std::unique_ptr<DebugDumper> dumper;
   if (!options.debug_dir.empty()) {
     dumper = std::make_unique<DebugDumper>(options.debug_dir, options.methods.settings());
-    run_options.on_match = [&](std::size_t reference, std::size_t k, const odometry::MatchResult &match) {
-      if (!match.converged || (options.debug_every > 0 && k % options.debug_every == 0))
-        dumper->dumpPair(log, reference, k);
+    run_options.on_match = [&](std::size_t reference, std::size_t k, const LaserScan &target,
+                               const odometry::MatchResult &match) {
+      if (!match.converged || (options.debug_every > 0 && k % options.debug_every == 0)) {
+        if (options.local_map > 0)
+          dumper->dumpMapPair(log, target, reference, k);
+        else
+          dumper->dumpPair(log, reference, k);
+      }
     };
   }
   const odometry::OdometryRun run = odometry::runOdometry(log, *matcher, run_options);

@@ -30,6 +30,14 @@ file(GLOB pictures ${WORK_DIR}/debug/pair_*.png)
 if(NOT pictures)
   message(FATAL_ERROR "odometry --debug-dir wrote no pair image")
 endif()
+# Against a local map, the pictures show the map each scan was registered against.
+expect_run(0 odometry ${LOG} --local-map 3 --output ${WORK_DIR}/mapped.tum --debug-dir ${WORK_DIR}/debug-map
+           --debug-every 10)
+file(GLOB pictures ${WORK_DIR}/debug-map/pair_*.png)
+file(GLOB map_pictures ${WORK_DIR}/debug-map/pair_map*.png)
+if(NOT map_pictures OR NOT pictures STREQUAL map_pictures)
+  message(FATAL_ERROR "odometry --local-map --debug-dir wrote ${pictures}, not pair_map<keyframe>_<scan>.png")
+endif()
 
 # evaluate prints the paper's metric against the ground truth.
 expect_run(0 evaluate ${WORK_DIR}/contour.tum --gt ${GT})

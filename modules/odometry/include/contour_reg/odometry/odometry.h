@@ -59,8 +59,9 @@ struct OdometryOptions {
   bool deskew = true;
   /// Called after every scan with (scans done, scans in all).
   std::function<void(std::size_t, std::size_t)> progress;
-  /// Called after every registration with (reference scan index, scan index, result).
-  std::function<void(std::size_t, std::size_t, const MatchResult &)> on_match;
+  /// Called after every registration with (reference scan index, scan index, the scan it was
+  /// registered against: the reference scan or the local map drawn at it, result).
+  std::function<void(std::size_t, std::size_t, const LaserScan &, const MatchResult &)> on_match;
 };
 
 struct OdometryStats {
