@@ -179,7 +179,8 @@ void runJob(const CompareOptions &options, const Input &input, const std::string
   run_options.frame = frameOf(options.frame);
   run_options.progress = progress;
   const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
-  io::writeTum(trajectoryPath(options, input.name, method), run.trajectory, odometry::frameDescription(run, input.log));
+  io::writeTum(trajectoryPath(options, input.name, method), run.trajectory,
+               odometry::frameDescription(run.frame, input.log));
   fs::create_directories(fs::path(options.out) / "jobs");
   writeJobRecord(recordPath(options, input.name, method), "contour_reg compare job: " + input.name + " " + method,
                  {{"registrations", double(run.stats.registrations)},

@@ -74,7 +74,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   }
   const odometry::OdometryRun run = odometry::runOdometry(log, *matcher, run_options);
   progress.finish();
-  const std::string frame = odometry::frameDescription(run, log);
+  const std::string frame = odometry::frameDescription(run.frame, log);
   io::writeTum(options.output, run.trajectory, frame);
   if (!options.covariance.empty()) writeSteps(options.covariance, log, run);
   std::printf("%s: %zu scans, %zu registrations by %s, %zu failed (%zu degenerate), median %.3f ms, p95 %.3f ms\n",

@@ -15,6 +15,7 @@
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
+#include "contour_reg/odometry/odometry.h"
 #include "contour_reg/odometry/scan_matcher.h"
 
 namespace contour_reg::cli {
@@ -83,9 +84,8 @@ int runRelations(const RelationsOptions &options) {
   else
     std::printf("%s: %zu relations with |t2 - t1| <= %.1f s, zero guess, success = within %.2f m and %.1f deg\n\n",
                 options.input.c_str(), pairs.size(), options.max_dt, options.tolerance, options.tolerance_deg);
-  if (robot_frame)
-    std::printf("estimates in the robot's frame: the laser is mounted at x %.3f m, y %.3f m, yaw %.2f deg\n\n",
-                log.laser_pose->x, log.laser_pose->y, log.laser_pose->yaw * 180.0 / M_PI);
+  std::printf("estimates in %s\n\n",
+              odometry::frameDescription(robot_frame ? odometry::Frame::kRobot : odometry::Frame::kLaser, log).c_str());
   std::FILE *csv = nullptr;
   if (!options.pairs_csv.empty()) {
     csv = std::fopen(options.pairs_csv.c_str(), "w");

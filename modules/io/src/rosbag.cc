@@ -25,13 +25,6 @@ namespace contour_reg::io {
 
 namespace {
 
-std::string firstTopicOfType(const rosbag::Bag &bag, const std::string &type) {
-  rosbag::View all(bag);
-  for (const rosbag::ConnectionInfo *connection : all.getConnections())
-    if (connection->datatype == type) return connection->topic;
-  return {};
-}
-
 std::vector<std::string> topicsOfType(const rosbag::Bag &bag, const std::string &type) {
   std::vector<std::string> topics;
   rosbag::View all(bag);
@@ -41,10 +34,22 @@ std::vector<std::string> topicsOfType(const rosbag::Bag &bag, const std::string 
   return topics;
 }
 
+std::string firstTopicOfType(const rosbag::Bag &bag, const std::string &type) {
+  const std::vector<std::string> topics = topicsOfType(bag, type);
+  return topics.empty() ? std::string() : topics.front();
+}
+
 std::string frameName(std::string name) { return name.empty() || name[0] != '/' ? name : name.substr(1); }
 
 double yawOf(const geometry_msgs::Quaternion &q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+
+geometry_msgs::Quaternion quaternionOf(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(0.5 * yaw);
+  q.w = std::cos(0.5 * yaw);
+  return q;
 }
 
 // The transforms of a bag's tf tree that do not move: each child frame's first pose in its
@@ -178,20 +183,6 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
 void writeRosbag(const std::string &path, const ScanLog &log) {
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Write);
-    if (log.laser_pose && !log.entries.empty()) {
-      // The mounting, as a robot's static transform publisher gives it.
-      geometry_msgs::TransformStamped mounting;
-      mounting.header.stamp = std::max(ros::Time(std::max(0.0, log.entries.front().scan.stamp)), ros::TIME_MIN);
-      mounting.header.frame_id = "base_link";
-      mounting.child_frame_id = "laser";
-      mounting.transform.translation.x = log.laser_pose->x;
-      mounting.transform.translation.y = log.laser_pose->y;
-      mounting.transform.rotation.z = std::sin(0.5 * log.laser_pose->yaw);
-      mounting.transform.rotation.w = std::cos(0.5 * log.laser_pose->yaw);
-      tf2_msgs::TFMessage message;
-      message.transforms.push_back(mounting);
-      bag.write("/tf_static", mounting.header.stamp, message);
-    }
     std::uint32_t sequence = 0;
     for (const LogEntry &entry : log.entries) {
       const LaserScan &scan = entry.scan;
@@ -222,6 +213,19 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
         if (valid) farthest = std::max(farthest, scan.ranges[n]);
       }
       message.range_max = scan.range_max > 0.0 ? static_cast<float>(scan.range_max) : std::nextafter(farthest, 1e9f);
+      if (sequence == 1 && log.laser_pose) {
+        // The mounting, as a robot's static transform publisher gives it, with the first scan.
+        geometry_msgs::TransformStamped mounting;
+        mounting.header.stamp = recorded;
+        mounting.header.frame_id = "base_link";
+        mounting.child_frame_id = message.header.frame_id;
+        mounting.transform.translation.x = log.laser_pose->x;
+        mounting.transform.translation.y = log.laser_pose->y;
+        mounting.transform.rotation = quaternionOf(log.laser_pose->yaw);
+        tf2_msgs::TFMessage transforms;
+        transforms.transforms.push_back(mounting);
+        bag.write("/tf_static", recorded, transforms);
+      }
       bag.write("/scan", recorded, message);
       if (entry.odometry) {
         nav_msgs::Odometry odometry;
@@ -231,8 +235,7 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
         odometry.child_frame_id = "base_link";
         odometry.pose.pose.position.x = entry.odometry->x;
         odometry.pose.pose.position.y = entry.odometry->y;
-        odometry.pose.pose.orientation.z = std::sin(0.5 * entry.odometry->yaw);
-        odometry.pose.pose.orientation.w = std::cos(0.5 * entry.odometry->yaw);
+        odometry.pose.pose.orientation = quaternionOf(entry.odometry->yaw);
         bag.write("/odom", recorded, odometry);
       }
     }

@@ -1,5 +1,6 @@
 #include "contour_reg/odometry/local_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -24,21 +25,24 @@ LaserScan renderLocalMap(const std::vector<MapKeyframe> &keyframes) {
   map.ranges.assign(beams, std::numeric_limits<float>::quiet_NaN());
 
   // Newest first: a keyframe fills only the bearings the newer ones left empty.
+  const auto turn_of_beams = static_cast<long>(beams);
+  std::vector<float> ranges(beams);  // one keyframe's nearest return per bearing
+  ComplexSequence code;
   for (auto k = keyframes.rbegin(); k != keyframes.rend(); ++k) {
     if (!k->scan) continue;
     const io::Pose2D seen = io::between(newest.pose, k->pose);
     const Complex turn = std::polar(1.0, seen.yaw), shift(seen.x, seen.y);
-    std::vector<float> ranges(beams, std::numeric_limits<float>::quiet_NaN());
-    for (const Complex &point : deskewedPolarCode(*k->scan, k->twist)) {
-      if (!std::isfinite(point.real()) || !std::isfinite(point.imag())) continue;
+    std::fill(ranges.begin(), ranges.end(), std::numeric_limits<float>::quiet_NaN());
+    deskewedPolarCode(*k->scan, k->twist, code);
+    for (const Complex &point : code) {
+      if (!isFinite(point)) continue;
       const Complex p = turn * point + shift;
       const double range = std::abs(p);
       if (!map.isValidRange(range)) continue;
-      const double index = std::round((std::arg(p) - map.angle_min) / increment);
-      const auto bin = static_cast<std::size_t>(
-          (static_cast<long long>(index) % static_cast<long long>(beams) + static_cast<long long>(beams)) %
-          static_cast<long long>(beams));
-      if (!(ranges[bin] <= range)) ranges[bin] = static_cast<float>(range);  // the nearest return of the keyframe
+      long bin = std::lround((std::arg(p) - map.angle_min) / increment) % turn_of_beams;
+      if (bin < 0) bin += turn_of_beams;
+      float &nearest = ranges[static_cast<std::size_t>(bin)];
+      if (!(nearest <= range)) nearest = static_cast<float>(range);
     }
     for (std::size_t n = 0; n < beams; ++n)
       if (std::isnan(map.ranges[n]) && !std::isnan(ranges[n])) map.ranges[n] = ranges[n];

@@ -177,9 +177,9 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   return run;
 }
 
-std::string frameDescription(const OdometryRun &run, const io::ScanLog &log) {
+std::string frameDescription(Frame frame, const io::ScanLog &log) {
   char text[160];
-  if (run.frame == Frame::kRobot && log.laser_pose)
+  if (frame == Frame::kRobot && log.laser_pose)
     std::snprintf(text, sizeof text,
                   "frame: robot (base_link); the laser is mounted at x %.3f m, y %.3f m, yaw %.2f deg",
                   log.laser_pose->x, log.laser_pose->y, log.laser_pose->yaw * 180.0 / M_PI);

@@ -91,8 +91,9 @@ struct OdometryRun {
   Frame frame = Frame::kLaser;  ///< the frame of trajectory and steps
 };
 
-/// One line that says which frame a run's trajectory is in, for the head of its file.
-std::string frameDescription(const OdometryRun &run, const io::ScanLog &log);
+/// One line that says which frame results of `log` given in `frame` are in (OdometryRun::frame),
+/// and where the laser is mounted, for the head of a trajectory file.
+std::string frameDescription(Frame frame, const io::ScanLog &log);
 
 /// The log's own wheel odometry as a trajectory in the robot's frame, starting at the origin
 /// with the first scan that has it; scans without it are left out.
