@@ -167,6 +167,29 @@ inline odometry::GuessSource guessSource(const std::string &name) {
   return odometry::GuessSource::kZero;
 }
 
+/// --wheel-fusion / --no-wheel-fusion and --wheel-noise: the wheel odometry as a prior (wheel_fusion.h).
+inline void addWheelFusionOptions(CLI::App &command, bool &fuse, odometry::WheelNoise &noise) {
+  command.add_flag("--wheel-fusion,!--no-wheel-fusion", fuse,
+                   "With --guess odom, fuse each contour registration with the wheel odometry by covariance; the "
+                   "wheels decide the directions the scans leave free (on by default)");
+  command
+      .add_option_function<std::vector<double>>(
+          "--wheel-noise",
+          [&noise](const std::vector<double> &v) {
+            for (double value : v)
+              if (!std::isfinite(value) || value < 0.0)
+                throw CLI::ValidationError("--wheel-noise", "A1 A2 A3 A4 must be finite numbers >= 0");
+            noise.rotation_per_rotation = v[0];
+            noise.rotation_per_translation = v[1];
+            noise.translation_per_translation = v[2];
+            noise.translation_per_rotation = v[3];
+          },
+          "The wheels' error model for --wheel-fusion, as AMCL's odom_alpha1-4: rad^2 per rad^2 turned, rad^2 per "
+          "m^2 driven, m^2 per m^2 driven, m^2 per rad^2 turned (default 0.07 0.001 0.04 0.0007)")
+      ->expected(4)
+      ->type_name("A1 A2 A3 A4");
+}
+
 /// A check that accepts the method names of odometry::methodNames().
 inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames()); }
 

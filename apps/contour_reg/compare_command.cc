@@ -36,7 +36,8 @@ struct CompareOptions {
   std::string guess = "zero", frame = "robot";
   bool keyframes = false;
   std::size_t local_map = 0;
-  bool deskew = true;
+  bool deskew = true, wheel_fusion = true;
+  odometry::WheelNoise wheel_noise;
   unsigned jobs = 0;
   double local_dt = 5.0;
   io::LogReadOptions read;
@@ -176,6 +177,8 @@ void runJob(const CompareOptions &options, const Input &input, const std::string
   run_options.keyframes = options.keyframes;
   run_options.local_map_keyframes = options.local_map;
   run_options.deskew = options.deskew;
+  run_options.fuse_wheel_odometry = options.wheel_fusion;
+  run_options.wheel_noise = options.wheel_noise;
   run_options.frame = frameOf(options.frame);
   run_options.progress = progress;
   const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
@@ -332,6 +335,7 @@ void addCompareCommand(CLI::App &app) {
   command->add_flag("--deskew,!--no-deskew", options->deskew,
                     "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
                     "the log has it (on by default)");
+  addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");
   command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")
       ->capture_default_str()

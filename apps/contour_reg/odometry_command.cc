@@ -18,7 +18,8 @@ namespace {
 
 struct OdometryCommandOptions {
   std::string input, output, method = "contour", guess = "zero", frame = "robot";
-  bool odom_guess = false, keyframes = false, deskew = true;
+  bool odom_guess = false, keyframes = false, deskew = true, wheel_fusion = true;
+  odometry::WheelNoise wheel_noise;
   std::string debug_dir, covariance;
   std::size_t debug_every = 0, local_map = 0;
   double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
@@ -53,6 +54,8 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   run_options.keyframes = options.keyframes;
   run_options.local_map_keyframes = options.local_map;
   run_options.deskew = options.deskew;
+  run_options.fuse_wheel_odometry = options.wheel_fusion;
+  run_options.wheel_noise = options.wheel_noise;
   run_options.frame = frameOf(options.frame);
   run_options.keyframe_distance = options.keyframe_distance;
   run_options.keyframe_angle = options.keyframe_angle_deg * M_PI / 180.0;
@@ -81,6 +84,9 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
               options.input.c_str(), log.entries.size(), run.stats.registrations, options.method.c_str(),
               run.stats.failures, run.stats.degenerate, percentile(run.stats.milliseconds, 0.5),
               percentile(run.stats.milliseconds, 0.95));
+  if (run.stats.fused > 0)
+    std::printf("  fused with the wheel odometry: %zu (%zu where the scans left a direction free)\n", run.stats.fused,
+                run.stats.pinned_by_wheels);
   for (const auto &[reason, count] : run.stats.failure_reasons)
     std::printf("  failed: %s: %zu\n", reason.c_str(), count);
   std::printf("trajectory: %s (%s)\n", options.output.c_str(), frame.c_str());
@@ -111,6 +117,7 @@ void addOdometryCommand(CLI::App &app) {
   command->add_flag("--deskew,!--no-deskew", options->deskew,
                     "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
                     "the log has it (on by default; docs/algorithm.md)");
+  addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
       ->capture_default_str()
       ->check(nonNegative());

@@ -228,6 +228,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
+    if (sigma2 > 0.0) result.information = information / (params.covariance_scale * sigma2);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
     if (lu.isInvertible()) {
       result.covariance = params.covariance_scale * sigma2 * lu.inverse();

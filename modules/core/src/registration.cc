@@ -232,6 +232,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     if (!against.empty())
       return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                          "too few inliers: " + std::to_string(corners) + " special points" + against);
+    if (result.degenerate) result.pinned = decision::pinnedPart(refined, params.refinement);
   }
   result.converged = true;
   result.status = RegistrationStatus::kConverged;
@@ -250,6 +251,8 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
   std::string why;
   const RegistrationStatus verdict = decision::judgeContourMotion(judged, params, buffers, scorer, why);
   if (verdict != RegistrationStatus::kConverged) {
+    if (verdict == RegistrationStatus::kUnconstrained)
+      result.pinned = decision::pinnedPart(judged.best.refined, params.refinement);
     result.status = verdict;
     result.reason += "; " + why;
     return;

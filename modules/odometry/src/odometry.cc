@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/Cholesky>
+
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/odometry/local_map.h"
 
@@ -22,6 +24,55 @@ std::optional<io::Pose2D> wheelMotion(const io::ScanLog &log, const io::LogEntry
   if (!a.odometry || !b.odometry) return std::nullopt;
   const io::Pose2D robot = between(*a.odometry, *b.odometry);
   return log.laser_pose ? io::laserMotion(robot, *log.laser_pose) : robot;
+}
+
+// The covariance of wheelMotion(log, a, b) (both have odometry) under `noise`, in the laser's frame.
+Eigen::Matrix3d wheelMotionCovariance(const io::ScanLog &log, const io::LogEntry &a, const io::LogEntry &b,
+                                      const WheelNoise &noise) {
+  const io::Pose2D robot = between(*a.odometry, *b.odometry);
+  const Eigen::Matrix3d covariance = wheelCovariance(robot, noise);
+  // The laser's motion is M^-1 r M: robotCovariance with the inverse mounting.
+  return log.laser_pose ? io::robotCovariance(covariance, robot, between(*log.laser_pose, io::Pose2D{})) : covariance;
+}
+
+// The 99.9 % quantile of chi-square with 3 degrees of freedom, and with 2.
+constexpr double kChiSquare3 = 16.27, kChiSquare2 = 13.82;
+
+// Fuses `match` with the wheels' increment `wheel` (covariance `wheel_covariance`): a converged
+// registration by its covariance, one that leaves a direction free by what it pins. Nothing
+// changes when there is nothing to fuse or the two disagree beyond their uncertainties.
+// Returns 0 when it did not fuse, 1 when it fused a converged registration, 2 a pinned one.
+int fuseWithWheels(MatchResult &match, const io::Pose2D &wheel, const Eigen::Matrix3d &wheel_covariance) {
+  const bool by_pinned = match.pinned && (!match.converged || match.degenerate);
+  Eigen::Matrix3d information;
+  io::Pose2D scan;
+  if (by_pinned) {
+    information = match.pinned->information;
+    scan = toPose(match.pinned->transform);
+  } else {
+    const Eigen::LLT<Eigen::Matrix3d> covariance(match.covariance);
+    if (!match.converged || !match.covariance.allFinite() || covariance.info() != Eigen::Success) return 0;
+    information = covariance.solve(Eigen::Matrix3d::Identity());
+    scan = toPose(match.transform);
+  }
+  const std::optional<FusedMotion> fused = fuse(scan, information, wheel, wheel_covariance);
+  if (!fused) return 0;
+  // The fused motion's cost under both is chi-square, with as many degrees of freedom as the scans pin.
+  auto offset = [&](const io::Pose2D &from) {
+    return Eigen::Vector3d(fused->motion.x - from.x, fused->motion.y - from.y,
+                           std::remainder(fused->motion.yaw - from.yaw, 2 * M_PI));
+  };
+  const Eigen::Vector3d from_scan = offset(scan), from_wheel = offset(wheel);
+  const double cost =
+      from_scan.dot(information * from_scan) + from_wheel.dot(wheel_covariance.ldlt().solve(from_wheel));
+  if (cost > (by_pinned ? kChiSquare2 : kChiSquare3)) return 0;
+  match.transform = toMatrix(fused->motion);
+  match.covariance = fused->covariance;
+  match.converged = true;
+  match.degenerate = false;
+  match.status.clear();
+  match.reason.clear();
+  return by_pinned ? 2 : 1;
 }
 
 // The run's trajectory and steps, found in the laser's frame, in the robot's.
@@ -131,6 +182,13 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
         twists[k] = better;
       }
       match.milliseconds = both_ms;
+    }
+    if (options.guess == GuessSource::kOdometry && options.fuse_wheel_odometry && entries[reference].odometry &&
+        entries[k].odometry) {
+      const int fused = fuseWithWheels(match, *wheelMotion(log, entries[reference], entries[k]),
+                                       wheelMotionCovariance(log, entries[reference], entries[k], options.wheel_noise));
+      run.stats.fused += fused > 0;
+      run.stats.pinned_by_wheels += fused == 2;
     }
     if (match.converged && match.degenerate && options.reject_degenerate) {
       match.converged = false;

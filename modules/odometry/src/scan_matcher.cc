@@ -193,6 +193,7 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
     result.degenerate = contour_->isDegenerate();
     result.covariance = contour_->getCovariance();
     result.inliers = contour_->getResult().inliers.size();
+    result.pinned = contour_->getResult().pinned;
     if (!contour_->hasConverged()) {
       result.reason = contour_->getFailureReason();
       result.status = toString(contour_->getResult().status);

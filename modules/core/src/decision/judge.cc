@@ -113,4 +113,25 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
   return RegistrationStatus::kConverged;
 }
 
+std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const RefinementParams &params) {
+  const Eigen::Vector3d &free = refined.weakest_direction;
+  const Eigen::Matrix3d &information = refined.information;
+  const double along = free.dot(information * free);
+  if (free.isZero() || !information.allFinite() || information.isZero()) return std::nullopt;
+  PinnedMotion pinned;
+  pinned.transform = refined.transform;
+  pinned.free_direction = free;
+  // Marginalising the motion along `free`: I - I f f^T I / (f^T I f) has f in its null space.
+  pinned.information = information;
+  if (along > 0.0) pinned.information -= (information * free) * (information * free).transpose() / along;
+  // The turn term adds yaw variance t^2; in information form a rank-one update (Woodbury).
+  const double turn = params.turn_noise * std::abs(yawOf(refined.transform));
+  if (turn > 0.0) {
+    const Eigen::Vector3d yaw_column = pinned.information.col(2);
+    pinned.information -= yaw_column * yaw_column.transpose() / (1.0 / (turn * turn) + pinned.information(2, 2));
+  }
+  pinned.information = 0.5 * (pinned.information + pinned.information.transpose());
+  return pinned;
+}
+
 }  // namespace contour_reg::decision

@@ -13,6 +13,7 @@
 /// Free-space evidence enters through the score: a rival that puts walls where the other scan
 /// looked through empty space scores lower and is no rival.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,5 +42,10 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
 /// low overlap, unconstrained or ambiguous, with the reason in `why`.
 RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                                       Scorer &scorer, std::string &why);
+
+/// What `refined` pins when its weakest direction is taken as free (RegistrationResult::pinned):
+/// its information with that direction marginalised out, and the turn term of its covariance
+/// (RefinementParams::turn_noise) added. None when the refinement paired too few points.
+std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const RefinementParams &params);
 
 }  // namespace contour_reg::decision

@@ -56,6 +56,9 @@ struct RefinementResult {
   double rmse = 0.0;                                        ///< m, point-to-line, last iteration
   double overlap = 0.0;                                     ///< fraction of source samples paired in the last iteration
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();     ///< x, y, yaw
+  /// The contours' information on x, y, yaw: the inverse of `covariance` before its turn term,
+  /// kept because it is defined where the covariance is not (zero along a corridor's axis).
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   bool degenerate = false;  ///< some direction of (x, y, yaw) unconstrained by the contours
   /// Weakest over strongest eigenvalue of the translation information: 0 in a corridor,
   /// 1 when the contours constrain x and y alike.

@@ -14,6 +14,7 @@
 /// free-space contradiction) and judge (supported, pinned, unrivalled; or the verdict).
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <random>
 #include <string>
@@ -111,6 +112,18 @@ std::ostream &operator<<(std::ostream &out, RegistrationStatus status);
 /// converged and invalid parameters. Another method, or a guess, may still decide it.
 bool isUndecided(RegistrationStatus status);
 
+/// What the contours pin of a motion when they leave one direction free (a corridor's axis, a
+/// turn inside a circle): their best motion, and its information with that direction taken
+/// out (marginalised: the free motion is left unknown). Alone it is no estimate; with a prior
+/// that pins the free direction, such as wheel odometry (odometry/wheel_fusion.h), it is one.
+struct PinnedMotion {
+  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
+  /// Information (inverse covariance) on x (m), y (m), yaw (rad); zero along free_direction.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  /// The free direction (x m, y m, yaw rad), RefinementResult::weakest_direction.
+  Eigen::Vector3d free_direction = Eigen::Vector3d::Zero();
+};
+
 struct RegistrationResult {
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
   bool converged = false;
@@ -131,6 +144,9 @@ struct RegistrationResult {
   /// True when the corners could not decide and the estimate is the guess refined on the
   /// contours (a local answer: right only when the guess was close enough).
   bool from_local_fallback = false;
+  /// Set when the contours' best motion leaves one direction free: an unconstrained verdict,
+  /// or a converged estimate marked degenerate. `transform` stays the guess for the former.
+  std::optional<PinnedMotion> pinned;
 };
 
 /// What registration keeps between calls: the target's refinement index, rebuilt only when

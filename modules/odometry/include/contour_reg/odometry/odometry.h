@@ -14,13 +14,14 @@
 #include "contour_reg/io/scan_log.h"
 #include "contour_reg/io/trajectory.h"
 #include "contour_reg/odometry/scan_matcher.h"
+#include "contour_reg/odometry/wheel_fusion.h"
 
 namespace contour_reg::odometry {
 
 /// Where the initial guess of each registration comes from.
 enum class GuessSource {
   kZero,              ///< no motion since the previous scan
-  kOdometry,          ///< the log's wheel odometry between the two scans
+  kOdometry,          ///< the log's wheel odometry between the two scans, also a prior (fuse_wheel_odometry)
   kConstantVelocity,  ///< the previous motion, scaled by the time between scans
 };
 
@@ -50,6 +51,15 @@ struct OdometryOptions {
   /// A registration that converged but says it is degenerate (MatchResult::degenerate) is
   /// treated as failed: bridged, not chained, and counted.
   bool reject_degenerate = true;
+  /// With the wheel odometry as the guess, each contour registration is fused with the wheels'
+  /// increment over the same interval (wheel_fusion.h): a converged one by its covariance, one
+  /// that leaves a direction free (an unconstrained verdict, a degenerate estimate) by what it
+  /// pins (MatchResult::pinned), so that the wheels decide that direction only. The two must
+  /// agree within their uncertainties (chi-square, 99.9 %); where they do not, the scans' answer
+  /// stands, or the scan stays failed. Other methods, and scans without odometry, are chained as
+  /// they are.
+  bool fuse_wheel_odometry = true;
+  WheelNoise wheel_noise;  ///< the wheels' error model for the fusion
   /// Scans that carry beam timing (LaserScan::time_increment) are deskewed (deskew.h) with the
   /// motion over their sweep as a constant twist: the wheel odometry from the scan's stamp to
   /// the next scan's when the log has it; otherwise the constant-velocity prediction (the
@@ -69,6 +79,8 @@ struct OdometryStats {
   std::size_t failures = 0;            ///< not converged (degenerate ones included)
   std::size_t degenerate = 0;          ///< of the failures, those whose status is "degenerate"
   std::size_t recovered_by_retry = 0;  ///< registrations that failed from the guess and converged on the retry
+  std::size_t fused = 0;               ///< registrations fused with the wheel odometry
+  std::size_t pinned_by_wheels = 0;    ///< of those, the ones whose scans left a direction free
   std::vector<double> milliseconds;    ///< per registration
   std::map<std::string, std::size_t> failure_reasons;  ///< MatchResult::status -> count
   std::vector<std::size_t> failed_scans;               ///< scan indices whose registration failed

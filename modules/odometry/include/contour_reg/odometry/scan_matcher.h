@@ -40,6 +40,8 @@ struct MatchResult {
   double milliseconds = 0.0;  ///< registration only (features of new scans included)
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw; zero when the method gives none
   std::size_t inliers = 0;  ///< contour methods: the special-point pairs the motion rests on (0 otherwise)
+  /// Contour methods: what the scans pin when they leave one direction free (RegistrationResult::pinned).
+  std::optional<PinnedMotion> pinned;
 };
 
 /// Settings of the methods that are worth changing from the command line.
