@@ -17,7 +17,7 @@ odometry::GuessSource guessSource(const std::string &guess) {
 
 odometry::OdometryRun runOdometry(const io::ScanLog &log, const std::string &method, const std::string &guess,
                                   bool keyframes, std::size_t local_map, bool deskew, const std::string &frame,
-                                  const py::kwargs &settings) {
+                                  bool wheel_fusion, const py::kwargs &settings) {
   if (frame != "robot" && frame != "laser") throw py::value_error("unknown frame '" + frame + "' (robot, laser)");
   odometry::OdometryOptions options;
   options.frame = frame == "laser" ? odometry::Frame::kLaser : odometry::Frame::kRobot;
@@ -25,6 +25,7 @@ odometry::OdometryRun runOdometry(const io::ScanLog &log, const std::string &met
   options.keyframes = keyframes;
   options.local_map_keyframes = local_map;
   options.deskew = deskew;
+  options.fuse_wheel_odometry = wheel_fusion;
   std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, matcherSettings(settings));
   if (!matcher) throw py::value_error("unknown method '" + method + "'; methods() lists them");
   py::gil_scoped_release release;
@@ -62,6 +63,12 @@ void bindOdometry(py::module_ &m) {
           "failures", [](const odometry::OdometryRun &r) { return r.stats.failures; },
           "registrations that did not converge (bridged by the wheel odometry or the previous motion)")
       .def_property_readonly(
+          "fused", [](const odometry::OdometryRun &r) { return r.stats.fused; },
+          "registrations fused with the wheel odometry (guess 'odom', wheel_fusion)")
+      .def_property_readonly(
+          "pinned_by_wheels", [](const odometry::OdometryRun &r) { return r.stats.pinned_by_wheels; },
+          "of those, the ones whose scans left a direction free (a corridor's axis)")
+      .def_property_readonly(
           "failure_reasons", [](const odometry::OdometryRun &r) { return r.stats.failure_reasons; }, "status -> count")
       .def_property_readonly(
           "milliseconds",
@@ -79,12 +86,15 @@ void bindOdometry(py::module_ &m) {
 
   m.def("odometry", &runOdometry, py::arg("log"), py::arg("method") = "contour", py::arg("guess") = "zero",
         py::arg("keyframes") = false, py::arg("local_map") = 0, py::arg("deskew") = true, py::arg("frame") = "robot",
+        py::arg("wheel_fusion") = true,
         "Laser odometry over a Log with `method` (see methods()): each scan registered against the previous one "
         "(or the last keyframe, or a local map of the last `local_map` keyframes), from a guess of 'zero', 'odom' (the "
         "log's wheel odometry) or 'velocity'. A failed "
         "registration is retried from the constant-velocity prediction, then bridged. deskew: scans with beam "
         "timing are deskewed by the motion over each (the wheel odometry when the log has it). frame: 'robot' gives "
         "the robot's trajectory when the log knows the laser's mounting (Log.laser_pose), 'laser' the laser's. "
+        "wheel_fusion: with guess 'odom', each contour registration is fused with the wheels' increment by "
+        "covariance, the wheels deciding the directions the scans leave free (fused steps count as converged). "
         "Keyword settings as register(). Releases the GIL.");
 }
 

@@ -25,7 +25,8 @@ expect_match("${LAST_ERR}" "--method")
 # Every invalid value exits 2 before any work, naming the option.
 foreach(case "--arm;0" "--threshold;-1" "--contour-step;0" "--candidates;0" "--local-fallback;40" "--max-range;-5"
              "--icp-max-distance;-1" "--iterations;0" "--ndt-resolution;0" "--probe-distance;-1" "--threshold;abc"
-             "--local-map;-1" "--frame;map" "--laser-pose;0.1;0" "--laser-pose;0;0;nan" "--laser-pose;a;b;c")
+             "--local-map;-1" "--frame;map" "--laser-pose;0.1;0" "--laser-pose;0;0;nan" "--laser-pose;a;b;c"
+             "--wheel-noise;0.1;0.1;0.1" "--wheel-noise;0.1;0.1;-0.1;0.1" "--wheel-noise;0.1;inf;0.1;0.1")
   list(GET case 0 option)
   expect_run(2 odometry ${LOG} -m ndt2d --output ${OUT}/t.tum ${case})
   expect_match("${LAST_ERR}" "${option}")

@@ -59,6 +59,39 @@ TEST(Degeneracy, CorridorRefinementIsFlaggedDegenerate) {
   }
 }
 
+// A bare corridor: the verdict is unconstrained, and what the contours pin is right across the
+// axis and in heading, with no information along the axis.
+TEST(Degeneracy, ABareCorridorPinsItsCrossAxisAndHeading) {
+  simulation::World corridor;
+  corridor.addSegment({-100, -1.2}, {100, -1.2});
+  corridor.addSegment({-100, 1.3}, {100, 1.3});
+  const Eigen::Isometry2d motion = test::pose2d(0.5, 0.05, 1);
+  const RegistrationResult r = registerFrom(corridor, motion, 0.01, 3);
+  ASSERT_FALSE(r.converged);
+  EXPECT_EQ(r.status, RegistrationStatus::kUnconstrained) << r.reason;
+  EXPECT_TRUE(r.transform.isIdentity()) << "without a guess, a failure reports the identity";
+  ASSERT_TRUE(r.pinned.has_value());
+  const PinnedMotion &pinned = *r.pinned;
+  // The free direction is the axis, x, up to sign.
+  EXPECT_GT(std::abs(pinned.free_direction.normalized()(0)), 0.99) << pinned.free_direction.transpose();
+  EXPECT_LT((pinned.information * pinned.free_direction).norm(),
+            1e-6 * pinned.information.norm() * pinned.free_direction.norm());
+  // Across the axis and in heading the pinned motion is the true one (the source seen from
+  // y 0.05 turned 1 deg, wherever along the axis).
+  EXPECT_NEAR(pinned.transform(1, 2), 0.05, 0.01);
+  EXPECT_NEAR(yawOf(pinned.transform) * 180.0 / M_PI, 1.0, 0.2);
+  // And those two directions are sure: centimetres, tenths of a degree.
+  EXPECT_GT(pinned.information(1, 1), 1.0 / (0.01 * 0.01));
+  EXPECT_GT(pinned.information(2, 2), 1.0 / std::pow(0.2 * M_PI / 180.0, 2));
+}
+
+// A room pins every direction: nothing is reported as pinned only.
+TEST(Degeneracy, ARoomLeavesNoDirectionFree) {
+  const RegistrationResult r = registerFrom(simulation::makeFurnishedRoom(), test::pose2d(0.3, 0.1, 5), 0.01, 4);
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_FALSE(r.pinned.has_value());
+}
+
 // Normalised estimation error squared of the rigid estimate against its covariance, averaged
 // over seeded trials: near 3 (x, y, yaw) when the covariance describes the actual errors.
 TEST(Covariance, NormalisedErrorSquaredIsNearThreeDegreesOfFreedom) {

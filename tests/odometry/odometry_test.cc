@@ -235,6 +235,105 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhenItIsTheGuess) {
   EXPECT_LT(std::hypot(error.x, error.y), 0.02);
 }
 
+// A bare corridor (walls beyond the LIDAR's reach at both ends) driven with a lane change and
+// noisy wheels: the scans pin the cross-axis position and the heading but not the position
+// along the axis. Fused, the trajectory keeps the wheels' motion along the axis and the scans'
+// across it and in heading; without fusion every step fails and the wheels' drift is all there is.
+struct CorridorRun {
+  simulation::SimulatedRun run;
+  OdometryRun fused, unfused;
+};
+CorridorRun corridorRun() {
+  simulation::World corridor;
+  corridor.addSegment({-100.0, -1.2}, {100.0, -1.2});
+  corridor.addSegment({-100.0, 1.3}, {100.0, 1.3});
+  simulation::RunSettings settings;
+  settings.odometry_noise = 0.15;
+  settings.seed = 7;
+  CorridorRun c{simulation::simulateRun(corridor, {{0.0, 0.0}, {3.0, 0.0}, {5.0, 0.5}, {9.0, 0.5}}, settings), {}, {}};
+  auto matcher = makeScanMatcher("contour");
+  OdometryOptions options;
+  options.guess = GuessSource::kOdometry;
+  c.fused = runOdometry(c.run.log, *matcher, options);
+  options.fuse_wheel_odometry = false;
+  c.unfused = runOdometry(c.run.log, *matcher, options);
+  return c;
+}
+
+TEST(Odometry, InACorridorTheWheelsGiveTheAxisAndTheScansTheRest) {
+  const CorridorRun c = corridorRun();
+  const io::Trajectory wheels = wheelOdometry(c.run.log);
+  const std::size_t steps = c.fused.stats.registrations;
+  ASSERT_EQ(c.fused.trajectory.size(), c.run.ground_truth.size());
+  EXPECT_EQ(c.fused.stats.failures, 0u);
+  EXPECT_GE(c.fused.stats.pinned_by_wheels, steps * 9 / 10);
+  EXPECT_GE(c.unfused.stats.failures, steps * 9 / 10);  // without the wheels the scans cannot decide
+  EXPECT_EQ(c.unfused.stats.failure_reasons.count("unconstrained"), 1u);
+  double worst_wheel_heading = 0.0, worst_wheel_across = 0.0;
+  for (std::size_t k = 0; k < c.fused.trajectory.size(); ++k) {
+    // Poses from the first scan's, the corridor's axis along x.
+    const io::Pose2D truth = io::between(c.run.ground_truth[0].pose, c.run.ground_truth[k].pose);
+    const io::Pose2D &fused = c.fused.trajectory[k].pose, &wheel = wheels[k].pose;
+    const double fused_heading = std::abs(std::remainder(fused.yaw - truth.yaw, 2 * M_PI));
+    EXPECT_LT(fused_heading, 0.3 * M_PI / 180.0) << "scan " << k;
+    EXPECT_LT(std::abs(fused.y - truth.y), 0.02) << "scan " << k;
+    // Along the axis each step is the wheels' step, turned by the scans' heading; within a
+    // centimetre and a half, as the wheels' errors along their drive are correlated with those
+    // across it, which the scans see, once the drive turns off the axis (the lane change).
+    if (k > 0) {
+      const io::Pose2D &before = c.fused.trajectory[k - 1].pose;
+      const io::Pose2D wheel_step = io::between(wheels[k - 1].pose, wheel);
+      const double wheel_along = std::cos(before.yaw) * wheel_step.x - std::sin(before.yaw) * wheel_step.y;
+      EXPECT_NEAR(fused.x - before.x, wheel_along, 0.015) << "scan " << k;
+    }
+    worst_wheel_heading = std::max(worst_wheel_heading, std::abs(std::remainder(wheel.yaw - truth.yaw, 2 * M_PI)));
+    worst_wheel_across = std::max(worst_wheel_across, std::abs(wheel.y - truth.y));
+  }
+  // The wheels alone drift in heading and across: what the scans corrected.
+  EXPECT_GT(worst_wheel_heading, 1.0 * M_PI / 180.0);
+  EXPECT_GT(worst_wheel_across, 0.05);
+  // The unfused run is the wheels' wherever its steps failed: no better across the axis.
+  const io::Pose2D last_truth = io::between(c.run.ground_truth[0].pose, c.run.ground_truth.back().pose);
+  EXPECT_GT(std::abs(c.unfused.trajectory.back().pose.y - last_truth.y),
+            2.0 * std::abs(c.fused.trajectory.back().pose.y - last_truth.y));
+}
+
+// The fused steps' covariance describes their errors on a simulated run whose wheels follow the
+// model: the office's S path, the wheel noise as the simulator makes it (2 % of each increment,
+// 0.4 % of a radian per metre in heading); mean normalised error squared near 3 (x, y, yaw).
+TEST(Odometry, FusedStepsCarryAConsistentCovariance) {
+  double nees_sum = 0.0;
+  std::size_t count = 0;
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    simulation::RunSettings settings;
+    settings.seed = seed;
+    const simulation::SimulatedRun run =
+        simulation::simulateRun(simulation::makeOfficeWorld(), simulation::officePath("S"), settings);
+    auto matcher = makeScanMatcher("contour");
+    OdometryOptions options;
+    options.guess = GuessSource::kOdometry;
+    options.wheel_noise.rotation_per_rotation = 0.02 * 0.02 / 2;
+    options.wheel_noise.rotation_per_translation = 0.004 * 0.004 / 2;
+    options.wheel_noise.translation_per_translation = 0.02 * 0.02;
+    options.wheel_noise.translation_per_rotation = 0.0;
+    options.wheel_noise.translation_floor = 0.001;
+    options.wheel_noise.rotation_floor = 0.001;
+    const OdometryRun fused = runOdometry(run.log, *matcher, options);
+    EXPECT_EQ(fused.stats.fused, fused.stats.registrations);
+    for (const OdometryStep &step : fused.steps) {
+      const io::Pose2D truth = io::between(run.ground_truth[step.reference].pose, run.ground_truth[step.scan].pose);
+      const Eigen::Vector3d error(step.motion.x - truth.x, step.motion.y - truth.y,
+                                  std::remainder(step.motion.yaw - truth.yaw, 2 * M_PI));
+      nees_sum += error.dot(step.covariance.ldlt().solve(error));
+      ++count;
+    }
+  }
+  const double mean = nees_sum / static_cast<double>(count);
+  std::printf("mean NEES of %zu fused steps: %.2f\n", count, mean);
+  EXPECT_GT(mean, 2.0);
+  EXPECT_LT(mean, 4.0);
+}
+
 // How many extractions of stages A-C have run in this process so far (each takes the next number).
 std::uint64_t extractionsSoFar() { return extractContourFeatures(ComplexSequence{}, ContourParams{}).extraction - 1; }
 

@@ -130,3 +130,13 @@ def test_a_local_map_odometry_follows_the_truth(s_run):
     assert run.failures == 0
     assert any(step.reference + 1 < step.scan for step in run.steps)
     assert cr.evaluate(run.trajectory, s_run.ground_truth)["end_point_percent"] < 1.0
+
+
+def test_wheel_odometry_is_fused_with_the_guess_odom(s_run):
+    fused = cr.odometry(s_run.log, guess="odom")
+    guessed = cr.odometry(s_run.log, guess="odom", wheel_fusion=False)
+    assert fused.fused == fused.registrations and fused.pinned_by_wheels == 0  # an office pins every direction
+    assert guessed.fused == 0 and cr.odometry(s_run.log).fused == 0
+    for step in fused.steps:
+        assert np.linalg.eigvalsh(step.covariance).min() > 0
+    assert cr.evaluate(fused.trajectory, s_run.ground_truth)["end_point_percent"] < 1.0
