@@ -32,7 +32,8 @@ struct ExperimentOptions {
   int arrivals = 10;
   unsigned seed = 1, jobs = 0;
   std::string guess = "zero";
-  bool deskew = true;
+  bool deskew = true, wheel_fusion = true;
+  odometry::WheelNoise wheel_noise;
   ScenarioOptions scenario;
   MethodOptions method_options;
   FanOutOptions fan_out;
@@ -220,6 +221,8 @@ int runExperiment(const ExperimentOptions &options) {
   settings.matcher = options.method_options.settings();
   settings.guess = guessSource(options.guess);
   settings.deskew = options.deskew;
+  settings.wheel_fusion = options.wheel_fusion;
+  settings.wheel_noise = options.wheel_noise;
   settings.jobs = options.jobs;
   const std::vector<experiment::Arrival> arrivals = experiment::planArrivals(scenario.paths, settings);
   if (options.fan_out.plan) return writePlan(options.out, arrivals.size());
@@ -292,6 +295,7 @@ void addExperimentCommand(CLI::App &app) {
   command->add_flag("--deskew,!--no-deskew", options->deskew,
                     "Deskew scans taken while moving (--motion continuous) with the motion over each scan, by "
                     "wheel odometry (on by default)");
+  addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   addScenarioOptions(*command, options->scenario);
   addMethodOptions(*command, options->method_options);
   addFanOutOptions(*command, options->fan_out);

@@ -51,6 +51,8 @@ std::vector<ArrivalResult> runArrival(const simulation::World &world,
   odometry::OdometryOptions options;
   options.guess = settings.guess;
   options.deskew = settings.deskew;
+  options.fuse_wheel_odometry = settings.wheel_fusion;
+  options.wheel_noise = settings.wheel_noise;
   std::vector<ArrivalResult> results(settings.methods.size() + 1);
   for (std::size_t m = 0; m < results.size(); ++m) {
     ArrivalResult &result = results[m];

@@ -39,8 +39,10 @@ struct ExperimentSettings {
   double waypoint_jitter = 0.05;
   odometry::MatcherSettings matcher;
   odometry::GuessSource guess = odometry::GuessSource::kZero;
-  bool deskew = true;  ///< OdometryOptions::deskew
-  unsigned jobs = 0;   ///< parallel arrivals (0: one per core)
+  bool deskew = true;                ///< OdometryOptions::deskew
+  bool wheel_fusion = true;          ///< OdometryOptions::fuse_wheel_odometry
+  odometry::WheelNoise wheel_noise;  ///< OdometryOptions::wheel_noise
+  unsigned jobs = 0;                 ///< parallel arrivals (0: one per core)
   /// Called after every arrival with (arrivals done, arrivals in all).
   std::function<void(std::size_t, std::size_t)> progress;
 };
