@@ -176,13 +176,12 @@ inline void addWheelFusionOptions(CLI::App &command, bool &fuse, odometry::Wheel
       .add_option_function<std::vector<double>>(
           "--wheel-noise",
           [&noise](const std::vector<double> &v) {
-            for (double value : v)
-              if (!std::isfinite(value) || value < 0.0)
-                throw CLI::ValidationError("--wheel-noise", "A1 A2 A3 A4 must be finite numbers >= 0");
             noise.rotation_per_rotation = v[0];
             noise.rotation_per_translation = v[1];
             noise.translation_per_translation = v[2];
             noise.translation_per_rotation = v[3];
+            std::string why;
+            if (!noise.validate(&why)) throw CLI::ValidationError("--wheel-noise", why);
           },
           "The wheels' error model for --wheel-fusion, as AMCL's odom_alpha1-4: rad^2 per rad^2 turned, rad^2 per "
           "m^2 driven, m^2 per m^2 driven, m^2 per rad^2 turned (default 0.07 0.001 0.04 0.0007)")

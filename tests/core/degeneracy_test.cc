@@ -46,9 +46,7 @@ TEST(Degeneracy, TwoPointsDoNotConverge) {
 TEST(Degeneracy, CorridorRefinementIsFlaggedDegenerate) {
   // Two parallel walls with one doorway corner pair: if anything converges, the contour
   // refinement must see that the corridor axis is weakly constrained or the answer must be right.
-  simulation::World corridor;
-  corridor.addSegment({-30, -1.2}, {30, -1.2});
-  corridor.addSegment({-30, 1.3}, {30, 1.3});
+  const simulation::World corridor = test::bareCorridor(30);
   const Eigen::Isometry2d motion = test::pose2d(0.5, 0.05, 1);
   const RegistrationResult r = registerFrom(corridor, motion, 0.01, 3);
   if (r.converged) {
@@ -62,9 +60,7 @@ TEST(Degeneracy, CorridorRefinementIsFlaggedDegenerate) {
 // A bare corridor: the verdict is unconstrained, and what the contours pin is right across the
 // axis and in heading, with no information along the axis.
 TEST(Degeneracy, ABareCorridorPinsItsCrossAxisAndHeading) {
-  simulation::World corridor;
-  corridor.addSegment({-100, -1.2}, {100, -1.2});
-  corridor.addSegment({-100, 1.3}, {100, 1.3});
+  const simulation::World corridor = test::bareCorridor(100);
   const Eigen::Isometry2d motion = test::pose2d(0.5, 0.05, 1);
   const RegistrationResult r = registerFrom(corridor, motion, 0.01, 3);
   ASSERT_FALSE(r.converged);

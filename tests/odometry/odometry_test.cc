@@ -244,9 +244,7 @@ struct CorridorRun {
   OdometryRun fused, unfused;
 };
 CorridorRun corridorRun() {
-  simulation::World corridor;
-  corridor.addSegment({-100.0, -1.2}, {100.0, -1.2});
-  corridor.addSegment({-100.0, 1.3}, {100.0, 1.3});
+  const simulation::World corridor = test::bareCorridor(100.0);
   simulation::RunSettings settings;
   settings.odometry_noise = 0.15;
   settings.seed = 7;

@@ -82,6 +82,8 @@ TEST(Fusion, EqualCertaintyGivesTheMean) {
   EXPECT_NEAR(fused->motion.y, 0.05, 1e-9);
   EXPECT_NEAR(std::remainder(fused->motion.yaw - (M_PI + 0.01), 2 * M_PI), 0.0, 1e-9);
   EXPECT_TRUE(fused->covariance.isApprox(0.5 * information.inverse(), 1e-9));
+  // Each half the difference d away: d^T I d / 2 = (100 * 0.04 + 100 * 0.01 + 400 * 0.0016) / 2.
+  EXPECT_NEAR(fused->disagreement, 2.82, 1e-9);
 }
 
 TEST(Fusion, RefusesAWheelCovarianceThatIsNotPositive) {

@@ -56,6 +56,14 @@ struct RoomWithBoxes {
   }
 };
 
+/// Two parallel walls 2.5 m apart (y -1.2 and 1.3) from x -half_length to half_length, nothing else.
+inline simulation::World bareCorridor(double half_length) {
+  simulation::World corridor;
+  corridor.addSegment({-half_length, -1.2}, {half_length, -1.2});
+  corridor.addSegment({-half_length, 1.3}, {half_length, 1.3});
+  return corridor;
+}
+
 /// A corridor 2.5 m wide with a door recess every 3 m along one wall, closed 9 m ahead of the origin.
 inline simulation::World corridorOfDoors() {
   simulation::World corridor;

@@ -38,41 +38,27 @@ Eigen::Matrix3d wheelMotionCovariance(const io::ScanLog &log, const io::LogEntry
 // The 99.9 % quantile of chi-square with 3 degrees of freedom, and with 2.
 constexpr double kChiSquare3 = 16.27, kChiSquare2 = 13.82;
 
+enum class Fused { kNo, kConverged, kPinned };
+
 // Fuses `match` with the wheels' increment `wheel` (covariance `wheel_covariance`): a converged
 // registration by its covariance, one that leaves a direction free by what it pins. Nothing
 // changes when there is nothing to fuse or the two disagree beyond their uncertainties.
-// Returns 0 when it did not fuse, 1 when it fused a converged registration, 2 a pinned one.
-int fuseWithWheels(MatchResult &match, const io::Pose2D &wheel, const Eigen::Matrix3d &wheel_covariance) {
+Fused fuseWithWheels(MatchResult &match, const io::Pose2D &wheel, const Eigen::Matrix3d &wheel_covariance) {
   const bool by_pinned = match.pinned && (!match.converged || match.degenerate);
-  Eigen::Matrix3d information;
-  io::Pose2D scan;
-  if (by_pinned) {
-    information = match.pinned->information;
-    scan = toPose(match.pinned->transform);
-  } else {
-    const Eigen::LLT<Eigen::Matrix3d> covariance(match.covariance);
-    if (!match.converged || !match.covariance.allFinite() || covariance.info() != Eigen::Success) return 0;
-    information = covariance.solve(Eigen::Matrix3d::Identity());
-    scan = toPose(match.transform);
-  }
-  const std::optional<FusedMotion> fused = fuse(scan, information, wheel, wheel_covariance);
-  if (!fused) return 0;
-  // The fused motion's cost under both is chi-square, with as many degrees of freedom as the scans pin.
-  auto offset = [&](const io::Pose2D &from) {
-    return Eigen::Vector3d(fused->motion.x - from.x, fused->motion.y - from.y,
-                           std::remainder(fused->motion.yaw - from.yaw, 2 * M_PI));
-  };
-  const Eigen::Vector3d from_scan = offset(scan), from_wheel = offset(wheel);
-  const double cost =
-      from_scan.dot(information * from_scan) + from_wheel.dot(wheel_covariance.ldlt().solve(from_wheel));
-  if (cost > (by_pinned ? kChiSquare2 : kChiSquare3)) return 0;
+  const Eigen::LLT<Eigen::Matrix3d> covariance(match.covariance);
+  if (!by_pinned && (!match.converged || !match.covariance.allFinite() || covariance.info() != Eigen::Success))
+    return Fused::kNo;
+  const std::optional<FusedMotion> fused =
+      by_pinned ? fuse(toPose(match.pinned->transform), match.pinned->information, wheel, wheel_covariance)
+                : fuse(toPose(match.transform), covariance.solve(Eigen::Matrix3d::Identity()), wheel, wheel_covariance);
+  if (!fused || fused->disagreement > (by_pinned ? kChiSquare2 : kChiSquare3)) return Fused::kNo;
   match.transform = toMatrix(fused->motion);
   match.covariance = fused->covariance;
   match.converged = true;
   match.degenerate = false;
   match.status.clear();
   match.reason.clear();
-  return by_pinned ? 2 : 1;
+  return by_pinned ? Fused::kPinned : Fused::kConverged;
 }
 
 // The run's trajectory and steps, found in the laser's frame, in the robot's.
@@ -185,10 +171,11 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     }
     if (options.guess == GuessSource::kOdometry && options.fuse_wheel_odometry && entries[reference].odometry &&
         entries[k].odometry) {
-      const int fused = fuseWithWheels(match, *wheelMotion(log, entries[reference], entries[k]),
-                                       wheelMotionCovariance(log, entries[reference], entries[k], options.wheel_noise));
-      run.stats.fused += fused > 0;
-      run.stats.pinned_by_wheels += fused == 2;
+      const Fused fused =
+          fuseWithWheels(match, *wheelMotion(log, entries[reference], entries[k]),
+                         wheelMotionCovariance(log, entries[reference], entries[k], options.wheel_noise));
+      run.stats.fused += fused != Fused::kNo;
+      run.stats.pinned_by_wheels += fused == Fused::kPinned;
     }
     if (match.converged && match.degenerate && options.reject_degenerate) {
       match.converged = false;

@@ -49,6 +49,8 @@ std::optional<FusedMotion> fuse(const io::Pose2D &scan, const Eigen::Matrix3d &s
   FusedMotion fused;
   fused.motion = {scan.x + step(0), scan.y + step(1), std::remainder(scan.yaw + step(2), 2 * M_PI)};
   fused.covariance = solver.solve(Eigen::Matrix3d::Identity());
+  const Eigen::Vector3d from_wheel = step - difference;
+  fused.disagreement = step.dot(scan_information * step) + from_wheel.dot(wheel_information * from_wheel);
   return fused;
 }
 

@@ -47,6 +47,9 @@ Eigen::Matrix3d wheelCovariance(const io::Pose2D &increment, const WheelNoise &n
 struct FusedMotion {
   io::Pose2D motion;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  /// How far the two disagree: the fused motion's cost under both, (x - s)^T S (x - s) +
+  /// (x - w)^T W (x - w), chi-square with as many degrees of freedom as the scans pin.
+  double disagreement = 0.0;
 };
 
 /// The information-weighted mean of the scans' motion (information `scan_information`, which
