@@ -42,15 +42,15 @@ std::vector<std::string> DebugDumper::dump(const io::ScanLog &log, const LaserSc
   if (b.time_increment > 0.0) {
     // The motion over the source's sweep, as the odometry deskews it: the wheel odometry's when
     // the log has it, else the motion this pair's registration found.
-    Twist2D twist;
+    SweepMotion motion;
     const double dt = b.stamp - a.stamp;
-    if (const auto wheel = odometry::wheelTwistOverSweep(log, source))
-      twist = *wheel;
+    if (const auto wheel = odometry::wheelMotionOverSweep(log, source))
+      motion = *wheel;
     else if (result.converged && std::abs(dt) > 1e-3)
-      twist = odometry::twistOver(io::toPose(result.transform), dt);
+      motion = odometry::twistOver(io::toPose(result.transform), dt);
     written.push_back((fs::path(folder_) / ("deskew_" + std::to_string(source) + ".png")).string());
     std::snprintf(title, sizeof title, "scan %zu raw and deskewed", source);
-    drawing::writeImage(written.back(), drawing::drawDeskew(b, twist, title));
+    drawing::writeImage(written.back(), drawing::drawDeskew(b, motion, title));
   }
   if (!methods.empty()) {
     std::vector<drawing::Alignment> alignments;

@@ -1,5 +1,6 @@
 #include "contour_reg/core/deskew.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -81,6 +82,42 @@ TEST(Deskew, TheTwistIntegratesAlongAnArc) {
   integrateTwist(Twist2D{1.0, 0.5, 0.0}, 2.0, position, heading);  // straight
   EXPECT_NEAR(position.real(), 2.0, 1e-12);
   EXPECT_NEAR(position.imag(), 1.0, 1e-12);
+}
+
+// A robot that drives straight for the first half of a 1 Hz LIDAR's sweep and turns at 1 rad/s
+// for the rest, as at the start of a corner: no constant twist describes its sweep.
+TEST(Deskew, AMotionThatChangesDuringTheSweepIsFollowedPieceByPiece) {
+  simulation::World wall;
+  wall.addSegment({-30.0, 3.0}, {30.0, 3.0});
+  simulation::LidarModel model = simulation::LidarModel::hokuyoUtm30lx();
+  model.range_noise = 0.0;
+  const double time_increment = beamInterval(1.0, model.angleIncrement()), half = 0.375;
+  const Twist2D straight{0.5, 0.0, 0.0}, turning{0.5, 0.0, 1.0};
+  const SweepMotion motion(straight, {{half, turning}});
+  std::mt19937 rng(1);
+  LaserScan scan = simulation::simulateScan(
+      wall,
+      [&](std::size_t n) {
+        const double t = time_increment * static_cast<double>(n);
+        Complex position, turned;
+        double heading = 0.0, after = 0.0;
+        integrateTwist(straight, std::min(t, half), position, heading);
+        integrateTwist(turning, std::max(t - half, 0.0), turned, after);
+        position += std::polar(1.0, heading) * turned;
+        return test::pose2d(position.real(), position.imag(), (heading + after) * 180.0 / M_PI);
+      },
+      model, rng);
+  scan.time_increment = time_increment;
+  // The same net motion over the sweep as one constant twist, as odometry sampled once per scan gives it.
+  const double sweep = time_increment * static_cast<double>(scan.ranges.size());
+  const Twist2D mean{0.5, 0.0, (sweep - half) / sweep};
+  EXPECT_LT(offWall(deskewedPolarCode(scan, motion)), 1e-6);
+  EXPECT_GT(offWall(deskewedPolarCode(scan, mean)), 0.05);
+  // A change to the same twist changes nothing.
+  const ComplexSequence constant = deskewedPolarCode(scan, turning),
+                        split = deskewedPolarCode(scan, SweepMotion(turning, {{half, turning}}));
+  for (std::size_t n = 0; n < constant.size(); ++n)
+    if (isFinite(constant[n])) EXPECT_LT(std::abs(constant[n] - split[n]), 1e-9) << n;
 }
 
 }  // namespace

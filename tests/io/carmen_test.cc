@@ -166,6 +166,27 @@ TEST(Carmen, WrittenLogsReadBackWithBeamGeometry) {
   EXPECT_NEAR(back.entries[0].odometry->yaw, 0.3, 1e-6);
 }
 
+// ODOM lines are written for every wheel odometry sample of the log, between the scans too.
+TEST(Carmen, WrittenLogsKeepTheWheelOdometryBetweenTheScans) {
+  TempDir dir;
+  ScanLog log;
+  for (int k = 0; k < 2; ++k) {
+    LogEntry entry;
+    entry.scan.stamp = 1.0 + k;
+    entry.scan.angle_increment = 0.01;
+    entry.scan.ranges = {1.0f, 2.0f};
+    entry.odometry = Pose2D{0.5 * k, 0.0, 0.1 * k};
+    log.entries.push_back(entry);
+  }
+  for (int i = 0; i <= 4; ++i) log.wheel_odometry.push_back({1.0 + 0.25 * i, Pose2D{0.125 * i, 0.0, 0.025 * i}});
+  writeCarmen(dir.file("w.clf"), log);
+  const ScanLog back = readLog(dir.file("w.clf"));
+  ASSERT_EQ(back.wheel_odometry.size(), 5u);
+  EXPECT_NEAR(back.wheel_odometry[2].stamp, 1.5, 1e-6);
+  EXPECT_NEAR(back.wheel_odometry[2].pose.x, 0.25, 1e-6);
+  EXPECT_NEAR(back.wheel_odometry[3].pose.yaw, 0.075, 1e-6);
+}
+
 // A ROBOTLASER1 line carries the laser's pose and the robot's: their difference in the robot's
 // frame is where the laser is mounted. The robot at (1, 2) facing +y with the laser 0.25 m
 // ahead of it and turned 10 deg: the laser at (1, 2.25), yaw 100 deg.

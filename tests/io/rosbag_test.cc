@@ -69,6 +69,27 @@ TEST(Rosbag, AWrittenBagReadsBackWithBeamTimingAndOdometry) {
   EXPECT_NEAR(with_period.entries[1].scan.time_increment, 0.1 * 0.5 / (2 * M_PI), 1e-9);
 }
 
+// The wheel odometry logged between the scans (ten samples a scan here) is written to /odom
+// and read back whole, as the log's wheel_odometry.
+TEST(Rosbag, WheelOdometryBetweenTheScansReadsBack) {
+  if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
+  test::TempDir dir;
+  const std::string path = (dir.path() / "odometry.bag").string();
+  ScanLog written = timedLog();
+  for (int i = 0; i <= 10; ++i) written.wheel_odometry.push_back({0.1 * i, Pose2D{0.06 * i, -0.02 * i, 0.04 * i}});
+  writeRosbag(path, written);
+  const ScanLog read = readLog(path);
+  ASSERT_EQ(read.wheel_odometry.size(), written.wheel_odometry.size());
+  for (std::size_t i = 0; i < read.wheel_odometry.size(); ++i) {
+    EXPECT_NEAR(read.wheel_odometry[i].stamp, written.wheel_odometry[i].stamp, 1e-9);
+    EXPECT_NEAR(read.wheel_odometry[i].pose.x, written.wheel_odometry[i].pose.x, 1e-9);
+    EXPECT_NEAR(read.wheel_odometry[i].pose.yaw, written.wheel_odometry[i].pose.yaw, 1e-9);
+  }
+  // Each scan's odometry comes from the samples: at 0.5 s the sixth.
+  ASSERT_TRUE(read.entries[1].odometry.has_value());
+  EXPECT_NEAR(read.entries[1].odometry->x, 0.3, 1e-9);
+}
+
 // The laser's mounting is the static transform from the odometry's child frame (base_link) to
 // the scan's frame; a bag without one has none.
 TEST(Rosbag, TheMountingComesFromTheStaticTransforms) {

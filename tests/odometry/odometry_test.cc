@@ -72,17 +72,20 @@ TEST(Odometry, StepsCarryTheChainedMotionAndAnHonestCovariance) {
 }
 
 // The office's S path driven without stopping: the scans are bent by the motion. The end-point
-// error in % of the path, raw and deskewed, of a run at `rate` Hz with or without its wheel odometry.
+// error in % of the path, raw and deskewed, of a run at `rate` Hz with the wheel odometry the
+// simulator logs (50 Hz), with the wheel odometry at the scans' stamps only, or without any.
+enum class Wheels { kLogged, kAtScansOnly, kNone };
 struct DeskewedRun {
   double raw = 0.0, deskewed = 0.0;
 };
-DeskewedRun endPointErrors(double rate, bool with_wheel_odometry) {
+DeskewedRun endPointErrors(double rate, Wheels wheels) {
   simulation::RunSettings settings;
   settings.rate = rate;
   settings.motion = simulation::Motion::kContinuous;
   simulation::SimulatedRun run =
       simulation::simulateRun(simulation::makeOfficeWorld(), simulation::officePath("S"), settings);
-  if (!with_wheel_odometry)
+  if (wheels != Wheels::kLogged) run.log.wheel_odometry.clear();
+  if (wheels == Wheels::kNone)
     for (io::LogEntry &entry : run.log.entries) entry.odometry.reset();
   auto endPoint = [&](bool deskew) {
     auto matcher = makeScanMatcher("contour");
@@ -96,7 +99,7 @@ DeskewedRun endPointErrors(double rate, bool with_wheel_odometry) {
 
 // Without wheel odometry each scan is deskewed by the previous motion, then by the one found.
 TEST(Odometry, DeskewingScansTakenWhileMovingCutsTheEndPointError) {
-  const DeskewedRun errors = endPointErrors(5.0, false);
+  const DeskewedRun errors = endPointErrors(5.0, Wheels::kNone);
   EXPECT_GT(errors.raw, 2.0);  // % of the path
   EXPECT_LT(errors.deskewed, 0.5 * errors.raw);
 }
@@ -104,9 +107,36 @@ TEST(Odometry, DeskewingScansTakenWhileMovingCutsTheEndPointError) {
 // With wheel odometry each scan is deskewed by the odometry over its own sweep, which holds in
 // the S path's turns at 2 Hz, where the previous motion is a poor guess of the next.
 TEST(Odometry, DeskewingByWheelOdometryHoldsThroughTurns) {
-  const DeskewedRun errors = endPointErrors(2.0, true);
+  const DeskewedRun errors = endPointErrors(2.0, Wheels::kAtScansOnly);
   EXPECT_GT(errors.raw, 10.0);
   EXPECT_LT(errors.deskewed, 2.0);
+}
+
+// At 1 Hz the robot begins and ends its turns within a sweep: the odometry logged between the
+// scans gives the motion piece by piece, where one twist per scan interval misplaces the beams.
+TEST(Odometry, DeskewingFollowsTheLoggedWheelOdometryWithinASweep) {
+  const DeskewedRun logged = endPointErrors(1.0, Wheels::kLogged);
+  const DeskewedRun at_scans = endPointErrors(1.0, Wheels::kAtScansOnly);
+  EXPECT_LT(logged.deskewed, 1.0);
+  EXPECT_GT(at_scans.deskewed, 5.0);
+}
+
+// The first scan is deskewed too: it is the first registration's target. With exact wheel
+// odometry the first step comes out as it would from scans taken at rest.
+TEST(Odometry, TheFirstScanIsDeskewedByTheWheelOdometry) {
+  simulation::RunSettings settings;
+  settings.rate = 1.0;
+  settings.motion = simulation::Motion::kContinuous;
+  settings.odometry_noise = 0.0;
+  const simulation::SimulatedRun run =
+      simulation::simulateRun(simulation::makeOfficeWorld(), simulation::officePath("L"), settings);
+  auto matcher = makeScanMatcher("contour");
+  const OdometryRun odometry = runOdometry(run.log, *matcher);
+  ASSERT_TRUE(odometry.steps.at(0).converged) << odometry.steps[0].status;
+  const io::Pose2D truth = io::between(run.ground_truth[0].pose, run.ground_truth[1].pose);
+  const io::Pose2D &step = odometry.steps[0].motion;
+  EXPECT_LT(std::hypot(step.x - truth.x, step.y - truth.y), 0.005);
+  EXPECT_LT(std::abs(step.yaw - truth.yaw), 0.1 * M_PI / 180);
 }
 
 // Deskewing is on by default, and scans without beam timing are left as they are.

@@ -1,5 +1,6 @@
 // The simulator: exact ray casting, the noise model, paths and their placement, runs that a
 // seed fixes and that round-trip through the CARMEN reader, occupancy maps.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numeric>
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "contour_reg/io/carmen.h"
+#include "contour_reg/io/pose2d.h"
 #include "contour_reg/simulation/lidar.h"
 #include "contour_reg/simulation/occupancy_grid.h"
 #include "contour_reg/simulation/office.h"
@@ -216,6 +218,42 @@ TEST(SimulatedRun, ContinuousMotionDistortsTheScan) {
   // The first beam fires where the robot stands; the last about 0.75 m (a 270 deg sweep in 1 s) further on.
   EXPECT_NEAR(a.front(), b.front(), 1e-4);
   EXPECT_GT(std::abs(a.back() - b.back()), 0.3);
+}
+
+// The wheel odometry is logged as a robot's /odom is, between the scans as well as at them:
+// exact without noise, and at each scan's stamp the scan's own odometry.
+TEST(SimulatedRun, WheelOdometryIsLoggedBetweenTheScans) {
+  World box;
+  box.addBox({-10.0, -10.0}, {10.0, 10.0});
+  RunSettings settings;
+  settings.rate = 2.0;
+  settings.odometry_rate = 20.0;
+  settings.odometry_noise = 0.0;
+  settings.motion = Motion::kContinuous;
+  const std::vector<V> path = {V(-5, 0), V(0, 0), V(0, 5)};
+  const SimulatedRun run = simulateRun(box, path, settings);
+  const double duration = run.log.entries.back().scan.stamp;
+  ASSERT_EQ(run.log.wheel_odometry.size(), static_cast<std::size_t>(std::lround(duration * 20.0)) + 1);
+  for (std::size_t i = 0; i < run.log.wheel_odometry.size(); ++i) {
+    const io::StampedPose &sample = run.log.wheel_odometry[i];
+    EXPECT_NEAR(sample.stamp, 0.05 * static_cast<double>(i), 1e-9);
+    const io::Pose2D truth =
+        io::toPose(poseAlongPath(path, std::min(0.5 * sample.stamp, run.path_length), settings.turn_radius).matrix());
+    EXPECT_NEAR(sample.pose.x, truth.x, 1e-9) << sample.stamp;
+    EXPECT_NEAR(sample.pose.y, truth.y, 1e-9) << sample.stamp;
+    EXPECT_NEAR(std::remainder(sample.pose.yaw - truth.yaw, 2 * M_PI), 0.0, 1e-9) << sample.stamp;
+  }
+  settings.odometry_noise = 0.05;
+  const SimulatedRun noisy = simulateRun(box, path, settings);
+  for (const io::LogEntry &entry : noisy.log.entries) {
+    const auto at = std::find_if(noisy.log.wheel_odometry.begin(), noisy.log.wheel_odometry.end(),
+                                 [&](const io::StampedPose &p) { return p.stamp == entry.scan.stamp; });
+    ASSERT_NE(at, noisy.log.wheel_odometry.end()) << entry.scan.stamp;
+    EXPECT_EQ(at->pose.x, entry.odometry->x);
+    EXPECT_EQ(at->pose.yaw, entry.odometry->yaw);
+  }
+  settings.odometry_rate = 0.0;
+  EXPECT_TRUE(simulateRun(box, path, settings).log.wheel_odometry.empty());
 }
 
 }  // namespace

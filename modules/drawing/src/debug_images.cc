@@ -104,12 +104,12 @@ View View::fit(const std::vector<Eigen::Vector2d> &points, int width, int height
   return view;
 }
 
-cv::Mat drawDeskew(const LaserScan &scan, const Twist2D &twist, const std::string &title, int width) {
+cv::Mat drawDeskew(const LaserScan &scan, const SweepMotion &motion, const std::string &title, int width) {
   const int height = width * 3 / 4;
   cv::Mat image(height, width, CV_8UC3, kWhite);
   const ComplexSequence raw = polarCode(scan);
   ComplexSequence deskewed = raw;
-  deskewPolarCode(deskewed, Sweep{scan.time_increment, twist});
+  deskewPolarCode(deskewed, Sweep{scan.time_increment, motion});
   std::vector<Eigen::Vector2d> raw_points, deskewed_points;
   double largest_shift = 0.0;
   for (std::size_t n = 0; n < raw.size() && n < deskewed.size(); ++n) {
@@ -125,12 +125,16 @@ cv::Mat drawDeskew(const LaserScan &scan, const Twist2D &twist, const std::strin
   drawPoints(image, view, deskewed_points, Palette::source(), 2);
   decorate(image, view);
   text(image, title, {15, 30}, 0.8);
-  char summary[200];
+  char summary[240];
   const double sweep = scan.time_increment * static_cast<double>(scan.ranges.empty() ? 0 : scan.ranges.size() - 1);
+  const Twist2D &twist = motion.twist;
+  char changes[64] = "";
+  if (!motion.changes.empty())
+    std::snprintf(changes, sizeof changes, " at the first beam, %zu changes", motion.changes.size());
   std::snprintf(summary, sizeof summary,
-                "motion over the sweep: %.2f m/s forward, %.2f m/s left, %.1f deg/s; sweep %.3f s; largest beam "
+                "motion over the sweep: %.2f m/s forward, %.2f m/s left, %.1f deg/s%s; sweep %.3f s; largest beam "
                 "shift %.3f m",
-                twist.vx, twist.vy, twist.wz * 180.0 / M_PI, sweep, largest_shift);
+                twist.vx, twist.vy, twist.wz * 180.0 / M_PI, changes, sweep, largest_shift);
   text(image, summary, {15, 58});
   if (scan.time_increment == 0.0)
     text(image, "NO BEAM TIMING: the scan is taken as if all at once", {15, 88}, 0.7, Palette::warning());

@@ -15,7 +15,6 @@ namespace {
 
 using detail::parseNumber;
 using Fields = std::vector<std::string_view>;
-using detail::TimedPose;
 
 // Reads fields [first, first + count) as numbers; false when any is missing or not a number.
 bool numbers(const Fields &fields, std::size_t first, std::size_t count, std::vector<double> &out) {
@@ -50,7 +49,7 @@ void fillRanges(LaserScan &scan, const std::vector<double> &values, double max_r
 // Returns an empty string on success, a description of the problem otherwise;
 // `is_laser` / `is_odometry` tell what the line was.
 // ROBOTLASER1 lines also give the laser's pose on the robot (`laser_pose`).
-std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &entry, TimedPose &odometry,
+std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &entry, StampedPose &odometry,
                       std::optional<Pose2D> &laser_pose, bool &is_laser, bool &is_odometry) {
   is_laser = is_odometry = false;
   const std::string_view type = f[0];
@@ -130,14 +129,14 @@ ScanLog readCarmen(const std::string &path, const CarmenOptions &options) {
   if (!reader.isOpen()) throw ReadError(path + ": cannot open");
   ScanLog log;
   log.source = path;
-  std::vector<TimedPose> odometry;
+  std::vector<StampedPose> odometry;
   std::string line;
   while (reader.next(line)) {
     ++log.report.lines;
     const Fields fields = detail::splitFields(line);
     if (fields.empty() || fields[0][0] == '#') continue;
     LogEntry entry;
-    TimedPose odom{};
+    StampedPose odom{};
     std::optional<Pose2D> laser_pose;
     bool is_laser = false, is_odometry = false;
     std::string problem = parseLine(fields, options, entry, odom, laser_pose, is_laser, is_odometry);
@@ -166,13 +165,21 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
                "# ROBOTLASER1 laser_type start_angle field_of_view angular_resolution maximum_range accuracy "
                "remission_mode num_readings [ranges] num_remissions laser_pose robot_pose tv rv "
                "forward_safety_dist side_safety_dist turn_axis timestamp host logger_timestamp\n");
+  auto writeOdometry = [&](const StampedPose &sample) {
+    std::fprintf(file, "ODOM %.6f %.6f %.6f 0 0 0 %.6f sim %.6f\n", sample.pose.x, sample.pose.y, sample.pose.yaw,
+                 sample.stamp, sample.stamp);
+  };
+  std::size_t next_odometry = 0;
   for (const LogEntry &entry : log.entries) {
     const LaserScan &s = entry.scan;
     const Pose2D pose = entry.odometry.value_or(Pose2D{});
     const Pose2D laser = compose(pose, log.laser_pose.value_or(Pose2D{}));
     const double max_range = s.range_max > 0.0 ? s.range_max : 80.0;
-    if (entry.odometry)
-      std::fprintf(file, "ODOM %.6f %.6f %.6f 0 0 0 %.6f sim %.6f\n", pose.x, pose.y, pose.yaw, s.stamp, s.stamp);
+    // The wheel odometry up to this scan: the log's samples, or the scan's own odometry.
+    for (; next_odometry < log.wheel_odometry.size() && log.wheel_odometry[next_odometry].stamp <= s.stamp;
+         ++next_odometry)
+      writeOdometry(log.wheel_odometry[next_odometry]);
+    if (entry.odometry && log.wheel_odometry.empty()) writeOdometry({s.stamp, pose});
     std::fprintf(file, "ROBOTLASER1 0 %.9f %.9f %.9f %.3f 0.01 0 %zu", s.angle_min,
                  s.angle_increment * static_cast<double>(s.ranges.size() > 0 ? s.ranges.size() - 1 : 0),
                  s.angle_increment, max_range, s.ranges.size());
@@ -180,6 +187,7 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
     std::fprintf(file, " 0 %.6f %.6f %.6f %.6f %.6f %.6f 0 0 0 0 0 %.6f sim %.6f\n", laser.x, laser.y, laser.yaw,
                  pose.x, pose.y, pose.yaw, s.stamp, s.stamp);
   }
+  for (; next_odometry < log.wheel_odometry.size(); ++next_odometry) writeOdometry(log.wheel_odometry[next_odometry]);
   const bool ok = std::fflush(file) == 0;
   std::fclose(file);
   if (!ok) throw ReadError(path + ": write failed");

@@ -112,7 +112,7 @@ bool rosbagSupported() { return true; }
 ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   ScanLog log;
   log.source = path;
-  std::vector<detail::TimedPose> odometry;
+  std::vector<StampedPose> odometry;
   TransformTree tree;
   std::string scan_frame, base_frame;  // of the first scan and the first odometry message
   try {
@@ -183,7 +183,23 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
 void writeRosbag(const std::string &path, const ScanLog &log) {
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Write);
-    std::uint32_t sequence = 0;
+    std::uint32_t sequence = 0, odometry_sequence = 0;
+    std::size_t next_odometry = 0;
+    auto writeOdometry = [&](const StampedPose &sample) {
+      if (!(sample.stamp >= 0.0) || !std::isfinite(sample.stamp))
+        throw ReadError("odometry sample " + std::to_string(odometry_sequence) + " has stamp " +
+                        std::to_string(sample.stamp) + " s, which a bag cannot hold");
+      const ros::Time stamp(sample.stamp);
+      nav_msgs::Odometry odometry;
+      odometry.header.seq = odometry_sequence++;
+      odometry.header.stamp = stamp;
+      odometry.header.frame_id = "odom";
+      odometry.child_frame_id = "base_link";
+      odometry.pose.pose.position.x = sample.pose.x;
+      odometry.pose.pose.position.y = sample.pose.y;
+      odometry.pose.pose.orientation = quaternionOf(sample.pose.yaw);
+      bag.write("/odom", std::max(stamp, ros::TIME_MIN), odometry);
+    };
     for (const LogEntry &entry : log.entries) {
       const LaserScan &scan = entry.scan;
       if (!(scan.stamp >= 0.0) || !std::isfinite(scan.stamp))
@@ -226,19 +242,14 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
         transforms.transforms.push_back(mounting);
         bag.write("/tf_static", recorded, transforms);
       }
+      // The wheel odometry up to this scan: the log's samples, or the scan's own odometry.
+      for (; next_odometry < log.wheel_odometry.size() && log.wheel_odometry[next_odometry].stamp <= scan.stamp;
+           ++next_odometry)
+        writeOdometry(log.wheel_odometry[next_odometry]);
       bag.write("/scan", recorded, message);
-      if (entry.odometry) {
-        nav_msgs::Odometry odometry;
-        odometry.header.seq = message.header.seq;
-        odometry.header.stamp = stamp;
-        odometry.header.frame_id = "odom";
-        odometry.child_frame_id = "base_link";
-        odometry.pose.pose.position.x = entry.odometry->x;
-        odometry.pose.pose.position.y = entry.odometry->y;
-        odometry.pose.pose.orientation = quaternionOf(entry.odometry->yaw);
-        bag.write("/odom", recorded, odometry);
-      }
+      if (entry.odometry && log.wheel_odometry.empty()) writeOdometry({scan.stamp, *entry.odometry});
     }
+    for (; next_odometry < log.wheel_odometry.size(); ++next_odometry) writeOdometry(log.wheel_odometry[next_odometry]);
     bag.close();
   } catch (const std::exception &error) {
     throw ReadError(path + ": cannot write the bag: " + error.what());

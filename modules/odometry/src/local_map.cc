@@ -33,7 +33,7 @@ LaserScan renderLocalMap(const std::vector<MapKeyframe> &keyframes) {
     const io::Pose2D seen = io::between(newest.pose, k->pose);
     const Complex turn = std::polar(1.0, seen.yaw), shift(seen.x, seen.y);
     std::fill(ranges.begin(), ranges.end(), std::numeric_limits<float>::quiet_NaN());
-    deskewedPolarCode(*k->scan, k->twist, code);
+    deskewedPolarCode(*k->scan, k->motion, code);
     for (const Complex &point : code) {
       if (!isFinite(point)) continue;
       const Complex p = turn * point + shift;

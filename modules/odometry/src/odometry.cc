@@ -75,12 +75,35 @@ void toRobotFrame(OdometryRun &run, const io::Pose2D &laser_pose) {
 
 Twist2D twistOver(const io::Pose2D &motion, double dt) { return {motion.x / dt, motion.y / dt, motion.yaw / dt}; }
 
-std::optional<Twist2D> wheelTwistOverSweep(const io::ScanLog &log, std::size_t k) {
-  if (k + 1 >= log.entries.size()) return std::nullopt;
-  const auto wheel = wheelMotion(log, log.entries[k], log.entries[k + 1]);
-  const double dt = log.entries[k + 1].scan.stamp - log.entries[k].scan.stamp;
-  if (!wheel || !(dt > 1e-3)) return std::nullopt;
-  return twistOver(*wheel, dt);
+std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k) {
+  if (k >= log.entries.size()) return std::nullopt;
+  const LaserScan &scan = log.entries[k].scan;
+  const double begin = scan.stamp;
+  const double end = begin + scan.time_increment * static_cast<double>(scan.ranges.size());
+  std::vector<io::StampedPose> own;  // the scans' odometry from scan k on, for a log that keeps no samples
+  if (log.wheel_odometry.empty()) {
+    if (!log.entries[k].odometry) return std::nullopt;
+    for (std::size_t j = k; j < log.entries.size() && (j == k || own.back().stamp < end); ++j)
+      if (log.entries[j].odometry) own.push_back({log.entries[j].scan.stamp, *log.entries[j].odometry});
+  }
+  const std::vector<io::StampedPose> &samples = log.wheel_odometry.empty() ? own : log.wheel_odometry;
+  // The interval that holds the first beam starts at the last sample at or before it.
+  auto first = std::upper_bound(samples.begin(), samples.end(), begin,
+                                [](double t, const io::StampedPose &p) { return t < p.stamp; });
+  if (first == samples.begin()) return std::nullopt;
+  --first;
+  std::optional<SweepMotion> motion;
+  for (auto a = first; a + 1 != samples.end() && (a == first || a->stamp < end); ++a) {
+    const double dt = (a + 1)->stamp - a->stamp;
+    if (!(dt > 1e-6)) continue;  // repeated stamps carry no velocity
+    const io::Pose2D robot = between(a->pose, (a + 1)->pose);
+    const Twist2D twist = twistOver(log.laser_pose ? io::laserMotion(robot, *log.laser_pose) : robot, dt);
+    if (!motion)
+      motion = SweepMotion(twist);
+    else
+      motion->changes.push_back({a->stamp - begin, twist});
+  }
+  return motion;
 }
 
 io::Trajectory wheelOdometry(const io::ScanLog &log) {
@@ -103,15 +126,18 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   io::Pose2D velocity_motion{};  // last scan-to-scan motion
   double velocity_dt = 0.0;
   std::size_t keyframe = 0;
-  // Each scan's motion over its sweep, fixed when the scan is first matched (the first has none).
-  std::vector<Twist2D> twists(entries.size());
+  // Each scan's motion over its sweep, fixed when the scan is first matched; the first scan's
+  // by the wheel odometry alone, when the log has it.
+  std::vector<SweepMotion> sweeps(entries.size());
+  if (options.deskew && entries[0].scan.time_increment > 0.0)
+    if (const std::optional<SweepMotion> first = wheelMotionOverSweep(log, 0)) sweeps[0] = *first;
   // The local map: its keyframes (oldest first) and the scan drawn of them at the newest.
   const bool mapping = options.local_map_keyframes > 0;
   std::vector<std::size_t> map_keyframes{0};
   LaserScan map;
   auto redrawMap = [&]() {
     std::vector<MapKeyframe> keyframes;
-    for (std::size_t j : map_keyframes) keyframes.push_back({&entries[j].scan, twists[j], poses[j]});
+    for (std::size_t j : map_keyframes) keyframes.push_back({&entries[j].scan, sweeps[j], poses[j]});
     map = renderLocalMap(keyframes);
   };
   if (mapping) redrawMap();
@@ -119,7 +145,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     const std::size_t reference = (options.keyframes || mapping) ? keyframe : k - 1;
     // The scan registered against: the reference scan, or the map drawn at it (deskewed already).
     const LaserScan &target = mapping ? map : entries[reference].scan;
-    const Twist2D target_twist = mapping ? Twist2D{} : twists[reference];
+    const SweepMotion target_sweep = mapping ? SweepMotion{} : sweeps[reference];
     const io::Pose2D previous = poses[k - 1];
     const double dt = entries[k].scan.stamp - entries[k - 1].scan.stamp;
 
@@ -135,13 +161,13 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     const io::Pose2D guess = between(poses[reference], expected);
     const bool deskewing = options.deskew && entries[k].scan.time_increment > 0.0;
     // The motion over this scan's sweep: the wheel odometry's when the log has it, else the last motion.
-    const std::optional<Twist2D> wheel_twist = deskewing ? wheelTwistOverSweep(log, k) : std::nullopt;
-    const bool by_wheel = wheel_twist.has_value();
+    const std::optional<SweepMotion> wheel_sweep = deskewing ? wheelMotionOverSweep(log, k) : std::nullopt;
+    const bool by_wheel = wheel_sweep.has_value();
     if (by_wheel)
-      twists[k] = *wheel_twist;
+      sweeps[k] = *wheel_sweep;
     else if (deskewing && velocity_dt > 1e-3)
-      twists[k] = twistOver(velocity_motion, velocity_dt);
-    MatchResult match = matcher.match(target, entries[k].scan, toMatrix(guess), target_twist, twists[k]);
+      sweeps[k] = twistOver(velocity_motion, velocity_dt);
+    MatchResult match = matcher.match(target, entries[k].scan, toMatrix(guess), target_sweep, sweeps[k]);
     // A failure gets a second try from the constant-velocity prediction when that is a
     // different guess (a turn or a drive that goes on, where the first guess was "no motion").
     const io::Pose2D velocity_guess = between(poses[reference], by_velocity);
@@ -149,7 +175,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     if (!match.converged && options.retry_with_velocity && velocity_scale > 0.0 &&
         (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05)) {
       const MatchResult retry =
-          matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_twist, twists[k]);
+          matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, sweeps[k]);
       const double first_ms = match.milliseconds;
       if (retry.converged) {
         match = retry;
@@ -161,11 +187,11 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     // interval, rather than the last one.
     if (deskewing && !by_wheel && match.converged && dt > 1e-3 && reference == k - 1) {
       const Twist2D better = twistOver(toPose(match.transform), dt);
-      const MatchResult again = matcher.match(target, entries[k].scan, match.transform, target_twist, better);
+      const MatchResult again = matcher.match(target, entries[k].scan, match.transform, target_sweep, better);
       const double both_ms = match.milliseconds + again.milliseconds;
       if (again.converged) {
         match = again;
-        twists[k] = better;
+        sweeps[k] = better;
       }
       match.milliseconds = both_ms;
     }

@@ -104,10 +104,10 @@ const std::vector<std::string> &methodNames() {
   return names;
 }
 
-Cloud::Ptr beamCloud(const LaserScan &scan, const Twist2D &twist) {
+Cloud::Ptr beamCloud(const LaserScan &scan, const SweepMotion &motion) {
   auto cloud = pcl::make_shared<Cloud>();
   cloud->reserve(scan.ranges.size());
-  for (const Complex &c : deskewedPolarCode(scan, twist))
+  for (const Complex &c : deskewedPolarCode(scan, motion))
     cloud->push_back(pcl::PointXYZ(float(c.real()), float(c.imag()), 0.f));
   cloud->is_dense = false;
   return cloud;
@@ -130,22 +130,22 @@ Cloud::Ptr ScanMatcher::inputFrom(const Cloud::Ptr &beams) const {
   return finite;
 }
 
-Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan, const Twist2D &twist) {
-  return inputFrom(beamCloud(scan, twist));
+Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan, const SweepMotion &motion) {
+  return inputFrom(beamCloud(scan, motion));
 }
 
 MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess,
-                               const Twist2D &target_twist, const Twist2D &source_twist) {
+                               const SweepMotion &target_motion, const SweepMotion &source_motion) {
   // The clouds first (scan conversion is not the registration's time), then what changed.
-  const bool new_target = !(keyOf(target, target_twist) == target_key_);
+  const bool new_target = !(keyOf(target, target_motion) == target_key_);
   const bool swap =
-      new_target && keyOf(target, target_twist) == source_key_ && swap_source_and_target_ && source_cloud_;
-  const bool new_source = !(keyOf(source, source_twist) == (swap ? target_key_ : source_key_));
+      new_target && keyOf(target, target_motion) == source_key_ && swap_source_and_target_ && source_cloud_;
+  const bool new_source = !(keyOf(source, source_motion) == (swap ? target_key_ : source_key_));
   Cloud::Ptr next_target =
       new_target && !swap
-          ? (keyOf(target, target_twist) == source_key_ ? source_cloud_ : cloudFor(target, target_twist))
+          ? (keyOf(target, target_motion) == source_key_ ? source_cloud_ : cloudFor(target, target_motion))
           : nullptr;
-  Cloud::Ptr next_source = new_source ? cloudFor(source, source_twist) : nullptr;
+  Cloud::Ptr next_source = new_source ? cloudFor(source, source_motion) : nullptr;
 
   const auto start = std::chrono::steady_clock::now();
   if (swap) {
@@ -154,12 +154,12 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
     std::swap(source_key_, target_key_);
   } else if (new_target) {
     target_cloud_ = std::move(next_target);
-    target_key_ = keyOf(target, target_twist);
+    target_key_ = keyOf(target, target_motion);
     registration_->setInputTarget(target_cloud_);
   }
   if (new_source) {
     source_cloud_ = std::move(next_source);
-    source_key_ = keyOf(source, source_twist);
+    source_key_ = keyOf(source, source_motion);
     registration_->setInputSource(source_cloud_);
   }
   return align(guess, start);

@@ -1,5 +1,6 @@
 #include "contour_reg/simulation/simulated_run.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -54,16 +55,32 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
     }
     entry.scan.stamp = stamp;
     if (k > 0) {  // wheel odometry: the true increment with proportional noise
-      const Eigen::Isometry2d step = previous_truth.inverse() * truth;
       const double scale = 1.0 + settings.odometry_noise * unit(rng);
-      const double yaw = toPose(step).yaw * (1.0 + settings.odometry_noise * unit(rng)) +
-                         0.2 * settings.odometry_noise * unit(rng) * step.translation().norm();
-      Eigen::Isometry2d noisy = Eigen::Isometry2d::Identity();
-      noisy.translate(step.translation() * scale);
-      noisy.rotate(yaw);
-      odometry = odometry * noisy;
+      const double yaw_scale = 1.0 + settings.odometry_noise * unit(rng);
+      const double yaw_per_metre = 0.2 * settings.odometry_noise * unit(rng);
+      // The odometry's increment from the last scan to the robot's true pose `to`.
+      auto noisyIncrement = [&](const Eigen::Isometry2d &to) {
+        const Eigen::Isometry2d step = previous_truth.inverse() * to;
+        Eigen::Isometry2d noisy = Eigen::Isometry2d::Identity();
+        noisy.translate(step.translation() * scale);
+        noisy.rotate(toPose(step).yaw * yaw_scale + yaw_per_metre * step.translation().norm());
+        return noisy;
+      };
+      if (settings.odometry_rate > 0.0) {  // the samples between the scans
+        const double previous_stamp = stamp - period;
+        for (double j = std::floor(previous_stamp * settings.odometry_rate) + 1.0;; j += 1.0) {
+          const double t = j / settings.odometry_rate;
+          if (t >= stamp - 1e-9) break;
+          if (t <= previous_stamp + 1e-9) continue;
+          const Eigen::Isometry2d at =
+              poseAlongPath(waypoints, std::min(settings.speed * t, run.path_length), settings.turn_radius);
+          run.log.wheel_odometry.push_back({t, toPose(odometry * noisyIncrement(at))});
+        }
+      }
+      odometry = odometry * noisyIncrement(truth);
     }
     entry.odometry = toPose(odometry);
+    if (settings.odometry_rate > 0.0) run.log.wheel_odometry.push_back({stamp, *entry.odometry});
     run.ground_truth.push_back({stamp, toPose(truth)});
     run.log.entries.push_back(std::move(entry));
     previous_truth = truth;

@@ -93,8 +93,8 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   void clearTarget();
 
   /// Scans taken while moving (deskew.h): the source's (target's) points, in cloud order, were
-  /// taken sweep.time_increment s apart while the sensor moved at sweep.twist (its velocity
-  /// in the frame of the sensor at the first point, e.g. from wheel odometry). align()
+  /// taken sweep.time_increment s apart while the sensor moved by sweep.motion (its velocity
+  /// in its own frame, constant or changing during the sweep, e.g. from wheel odometry). align()
   /// deskews them into the frame of the sensor at the first point before extracting special
   /// points, so the transform is between those frames. The default Sweep: taken at once.
   /// Kept until set again; setting one counts as new data.

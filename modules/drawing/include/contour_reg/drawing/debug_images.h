@@ -53,10 +53,11 @@ struct View {
 cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const ContourParams &params,
                  const std::string &title, int width = 1200);
 
-/// A scan taken while moving (LaserScan::time_increment), raw (grey) and deskewed by `twist`
-/// (deskew.h; orange) over each other in the frame of the sensor at the stamp, with the twist,
-/// the sweep's duration and the largest shift of a beam.
-cv::Mat drawDeskew(const LaserScan &scan, const Twist2D &twist, const std::string &title, int width = 1200);
+/// A scan taken while moving (LaserScan::time_increment), raw (grey) and deskewed by `motion`
+/// (deskew.h; orange) over each other in the frame of the sensor at the stamp, with the
+/// velocity at the first beam and how often it changes, the sweep's duration and the largest
+/// shift of a beam.
+cv::Mat drawDeskew(const LaserScan &scan, const SweepMotion &motion, const std::string &title, int width = 1200);
 
 /// One pair: left, both scans in their own frames with special points, candidate pairs
 /// (grey), RANSAC inliers (green) and outliers (red); right, the source moved onto the

@@ -18,6 +18,12 @@ struct Pose2D {
   double x = 0.0, y = 0.0, yaw = 0.0;
 };
 
+/// A pose at a stamp (s).
+struct StampedPose {
+  double stamp = 0.0;
+  Pose2D pose;
+};
+
 /// One scan of a log and the wheel odometry at its stamp, when the log has it.
 struct LogEntry {
   LaserScan scan;
@@ -37,6 +43,11 @@ struct ReadReport {
 struct ScanLog {
   std::string source;
   std::vector<LogEntry> entries;  ///< in stamp order
+  /// Every wheel odometry sample of the log (CARMEN ODOM lines, nav_msgs/Odometry messages), in
+  /// stamp order, the robot's pose in the odometry frame. A robot logs these faster than its
+  /// scans; a scan's `odometry` is interpolated from them. May be empty when the scans carry
+  /// their odometry themselves.
+  std::vector<StampedPose> wheel_odometry;
   ReadReport report;
   /// The laser's pose in the robot's frame (base_link -> laser), when the log says where the
   /// laser is mounted: scans are in the laser's frame, odometry is the robot's.

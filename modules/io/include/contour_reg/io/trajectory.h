@@ -10,10 +10,6 @@
 
 namespace contour_reg::io {
 
-struct StampedPose {
-  double stamp = 0.0;
-  Pose2D pose;
-};
 using Trajectory = std::vector<StampedPose>;
 
 /// The pose at t2 in the frame of the pose at t1.

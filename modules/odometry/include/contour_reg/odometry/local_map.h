@@ -15,11 +15,11 @@
 
 namespace contour_reg::odometry {
 
-/// A keyframe of the map: its scan, the sensor's velocity over the scan's sweep (deskew.h),
+/// A keyframe of the map: its scan, the sensor's motion over the scan's sweep (deskew.h),
 /// and the scan's pose in the odometry frame.
 struct MapKeyframe {
   const LaserScan *scan = nullptr;
-  Twist2D twist;
+  SweepMotion motion;
   io::Pose2D pose;
 };
 

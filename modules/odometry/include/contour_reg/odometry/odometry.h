@@ -114,10 +114,12 @@ io::Trajectory wheelOdometry(const io::ScanLog &log);
 /// The constant twist that makes `motion` in `dt` s (dt > 0).
 Twist2D twistOver(const io::Pose2D &motion, double dt);
 
-/// The laser's motion over scan k's sweep by the wheel odometry: its increment from scan k's
-/// stamp to scan k+1's (the interval the sweep lies in), brought to the laser by the log's
-/// mounting, as a constant twist; none when either scan has no odometry or k is the last scan.
-std::optional<Twist2D> wheelTwistOverSweep(const io::ScanLog &log, std::size_t k);
+/// The laser's motion over scan k's sweep by the wheel odometry, brought to the laser by the
+/// log's mounting: one constant twist per interval of the odometry's samples that the sweep
+/// overlaps (ScanLog::wheel_odometry, or the scans' own odometry when the log keeps no
+/// samples), the last one held past the last sample. None when no sample is at or before the
+/// scan's stamp, or there is no interval to take a twist from.
+std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k);
 
 /// Runs odometry over `log` with `matcher`. A registration that fails is retried from the
 /// constant-velocity prediction (retry_with_velocity); one that fails again is never chained: the

@@ -60,11 +60,11 @@ struct MatcherSettings {
 const std::vector<std::string> &methodNames();
 
 /// The beam-order cloud of a scan, NaN points for invalid beams (is_dense = false); with a
-/// twist, deskewed by it (deskew.h).
-Cloud::Ptr beamCloud(const LaserScan &scan, const Twist2D &twist = {});
+/// motion over its sweep, deskewed by it (deskew.h).
+Cloud::Ptr beamCloud(const LaserScan &scan, const SweepMotion &motion = {});
 
 /// Registers scans with one method. The scans must not change while a matcher is used on
-/// them: a scan is known by its address, its range buffer, its stamp and its twist. A call whose target
+/// them: a scan is known by its address, its range buffer, its stamp and its sweep's motion. A call whose target
 /// is the last call's target sets no new target (the registration keeps what it extracted
 /// from it); a call whose target is the last call's source hands that source over with
 /// `swap_source_and_target` when the method has one (ContourRegistration and
@@ -82,11 +82,11 @@ class ScanMatcher {
   Registration &registration() { return *registration_; }
 
   /// Registers `source` onto `target` from `guess` (source to target). A scan that carries
-  /// beam timing is deskewed with its twist (deskew.h) when its cloud is built; a scan's
-  /// cloud is built once, when it first appears, so its twist then is the one used.
+  /// beam timing is deskewed with its motion (deskew.h) when its cloud is built; a scan's
+  /// cloud is built once, when it first appears, so its motion then is the one used.
   MatchResult match(const LaserScan &target, const LaserScan &source,
-                    const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity(), const Twist2D &target_twist = {},
-                    const Twist2D &source_twist = {});
+                    const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity(), const SweepMotion &target_motion = {},
+                    const SweepMotion &source_motion = {});
 
   /// Registers beam-order clouds (x, y in the sensor frame, a NaN point for an invalid beam,
   /// as beamCloud makes them); methods that take finite points get the finite ones. Nothing
@@ -95,21 +95,20 @@ class ScanMatcher {
                     const Eigen::Matrix3d &guess = Eigen::Matrix3d::Identity());
 
  private:
-  // A scan is known by its address, its range buffer, its stamp and the twist it is deskewed with.
+  // A scan is known by its address, its range buffer, its stamp and the motion it is deskewed with.
   struct ScanKey {
     const LaserScan *scan = nullptr;
     const float *ranges = nullptr;
     double stamp = 0.0;
-    Twist2D twist;
+    SweepMotion motion;
     bool operator==(const ScanKey &o) const {
-      return scan == o.scan && ranges == o.ranges && stamp == o.stamp && twist.vx == o.twist.vx &&
-             twist.vy == o.twist.vy && twist.wz == o.twist.wz;
+      return scan == o.scan && ranges == o.ranges && stamp == o.stamp && motion == o.motion;
     }
   };
-  static ScanKey keyOf(const LaserScan &scan, const Twist2D &twist) {
-    return {&scan, scan.ranges.data(), scan.stamp, twist};
+  static ScanKey keyOf(const LaserScan &scan, const SweepMotion &motion) {
+    return {&scan, scan.ranges.data(), scan.stamp, motion};
   }
-  Cloud::Ptr cloudFor(const LaserScan &scan, const Twist2D &twist);
+  Cloud::Ptr cloudFor(const LaserScan &scan, const SweepMotion &motion);
   // The cloud the registration takes from a beam-order cloud: itself, or its finite points.
   Cloud::Ptr inputFrom(const Cloud::Ptr &beams) const;
   // Aligns the inputs set from `guess`; `start` is when the registration's time began.

@@ -26,19 +26,22 @@ struct RunSettings {
   Motion motion = Motion::kStopAndGo;
   double turn_radius = 0.4;      ///< m, see poseAlongPath
   double odometry_noise = 0.02;  ///< relative standard deviation of the wheel odometry increments
+  double odometry_rate = 50.0;   ///< Hz, wheel odometry samples logged (ScanLog::wheel_odometry); 0: none
   unsigned seed = 1;             ///< fixes range noise, dropout and odometry noise
   io::Pose2D laser_pose;         ///< the LIDAR's pose on the robot (base_link -> laser)
 };
 
 struct SimulatedRun {
-  io::ScanLog log;              ///< scans stamped k / rate s, wheel odometry at each, the mounting
+  io::ScanLog log;              ///< scans stamped k / rate s, wheel odometry at each and between, the mounting
   io::Trajectory ground_truth;  ///< the robot's true pose at each scan stamp
   double path_length = 0.0;     ///< m
 };
 
 /// Drives `waypoints` through `world`. Scan k is stamped k / rate; in continuous motion its
 /// beams fire over the revolution that starts then, so the later beams see the world from
-/// further along the path.
+/// further along the path. The robot drives the path at constant speed between the scans'
+/// poses; its wheel odometry is logged at odometry_rate and at every scan stamp, each
+/// increment between scans carrying its noise in proportion to how far along it the robot is.
 SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> &waypoints,
                          const RunSettings &settings);
 
