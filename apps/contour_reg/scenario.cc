@@ -64,6 +64,11 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
   command.add_option("--odometry-noise", options.odometry_noise, "Relative wheel odometry noise (>= 0)")
       ->capture_default_str()
       ->check(nonNegative());
+  command
+      .add_option("--odometry-rate", options.odometry_rate,
+                  "Wheel odometry samples logged per second, between the scans too (Hz, 0: at the scans only)")
+      ->capture_default_str()
+      ->check(nonNegative());
   addLaserPoseOption(command, options.laser_pose, "where the simulated LIDAR is mounted (default: 0 0 0)");
 }
 
@@ -111,6 +116,7 @@ simulation::RunSettings runSettings(const ScenarioOptions &options, double rate,
   settings.speed = options.speed;
   settings.motion = options.motion == "continuous" ? simulation::Motion::kContinuous : simulation::Motion::kStopAndGo;
   settings.odometry_noise = options.odometry_noise;
+  settings.odometry_rate = options.odometry_rate;
   settings.seed = seed;
   settings.laser_pose = options.laser_pose.value_or(io::Pose2D{});
   return settings;

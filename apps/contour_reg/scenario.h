@@ -24,10 +24,12 @@ struct ScenarioOptions {
   std::string motion = "stop-and-go";
   double speed = 0.5;
   double odometry_noise = 0.02;
+  double odometry_rate = 50.0;
   std::optional<io::Pose2D> laser_pose;  ///< the LIDAR on the robot; unset: at its centre
 };
 
-/// --map, --resolution, --paths-file, --lidar, --motion, --speed, --odometry-noise, --laser-pose.
+/// --map, --resolution, --paths-file, --lidar, --motion, --speed, --odometry-noise, --odometry-rate,
+/// --laser-pose.
 void addScenarioOptions(CLI::App &command, ScenarioOptions &options);
 
 struct Scenario {

@@ -102,6 +102,11 @@ void bindLogs(py::module_ &m) {
       .def_property_readonly("odometry", &odometryArray,
                              "N x 3 (x m, y m, yaw rad) wheel odometry at every scan, or the pose the log carries; "
                              "NaN rows where there is none")
+      .def_property_readonly(
+          "wheel_odometry", [](const io::ScanLog &log) { return trajectoryArray(log.wheel_odometry); },
+          "N x 4 (stamp s, x m, y m, yaw rad): every wheel odometry sample of the log (ODOM lines, "
+          "nav_msgs/Odometry messages, the simulator's 50 Hz odometry), between the scans too; deskewing "
+          "follows them within each sweep")
       .def_property(
           "laser_pose", [](const io::ScanLog &log) { return poseOrNone(log.laser_pose); },
           [](io::ScanLog &log, const py::object &value) { log.laser_pose = poseFrom(value, "laser_pose"); },

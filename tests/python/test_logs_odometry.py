@@ -75,6 +75,16 @@ def test_simulate_and_evaluate_know_the_truth(s_run):
     assert "relations_all" not in end
 
 
+def test_the_wheel_odometry_is_logged_between_the_scans(s_run):
+    samples = s_run.log.wheel_odometry
+    assert samples.shape[1] == 4
+    # 50 Hz over the run, the scans' stamps among them; at each scan the scan's own odometry.
+    assert samples.shape[0] == round(s_run.log.stamps[-1] * 50) + 1
+    np.testing.assert_allclose(np.diff(samples[:, 0]), 0.02, atol=1e-9)
+    at_scans = samples[np.isin(np.round(samples[:, 0], 9), np.round(s_run.log.stamps, 9))]
+    np.testing.assert_allclose(at_scans[:, 1:], s_run.log.odometry, atol=1e-12)
+
+
 def test_relation_errors_of_the_truth_are_zero(s_run):
     gt = s_run.ground_truth
     relations = np.array([[gt[k, 0], gt[k + 5, 0], *cr.relative_pose(gt[k, 1:], gt[k + 5, 1:])]
