@@ -30,15 +30,17 @@ void BM_ContourCode(benchmark::State &state) {  // stage A: polar code and segme
   }
 }
 
-// Deskewing (deskew.h) in place of stage A's polar code: every beam moved by the twist over
-// the sweep, for a scan taken at 10 Hz while driving 1 m/s and turning 0.5 rad/s.
+// Deskewing (deskew.h) in place of stage A's polar code: every beam moved by the motion over
+// the sweep, for a scan taken at 10 Hz while driving 1 m/s and beginning to turn, as 50 Hz
+// wheel odometry gives it: a new twist every 20 ms, the turn rate rising by 0.25 rad/s each.
 void BM_Deskew(benchmark::State &state) {
   ScanPair pair = scanPair(int(state.range(0)));
   pair.source.time_increment = 0.1 * pair.source.angle_increment / (2.0 * M_PI);
-  const Twist2D twist{1.0, 0.0, 0.5};
+  SweepMotion motion(Twist2D{1.0, 0.0, 0.0});
+  for (int i = 1; i < 5; ++i) motion.changes.push_back({0.02 * i, Twist2D{1.0, 0.0, 0.25 * i}});
   ComplexSequence code;
   for (auto _ : state) {
-    deskewedPolarCode(pair.source, twist, code);
+    deskewedPolarCode(pair.source, motion, code);
     benchmark::DoNotOptimize(code.data());
   }
 }
