@@ -74,12 +74,11 @@ inline void addFrameOption(CLI::App &command, std::string &frame) {
       .add_option("--frame", frame,
                   "Frame of the trajectory: robot (base_link, when the log or --laser-pose gives the laser's "
                   "mounting) or laser")
-      ->check(CLI::IsMember({"robot", "laser"}))
+      ->check(CLI::IsMember(odometry::frameNames()))
       ->capture_default_str();
 }
-inline odometry::Frame frameOf(const std::string &name) {
-  return name == "laser" ? odometry::Frame::kLaser : odometry::Frame::kRobot;
-}
+/// The frame of a name --frame has checked.
+inline odometry::Frame frameOf(const std::string &name) { return odometry::frameNamed(name).value(); }
 
 /// Method settings worth studying from the command line; defaults are the library's.
 struct MethodOptions {
@@ -158,14 +157,11 @@ void prepareOutputFolder(const std::string &option, const std::string &path);
 /// --guess: where each registration's initial guess comes from.
 inline void addGuessOption(CLI::App &command, std::string &guess) {
   command.add_option("--guess", guess, "Initial guess: zero, odom (wheel odometry), velocity")
-      ->check(CLI::IsMember({"zero", "odom", "velocity"}))
+      ->check(CLI::IsMember(odometry::guessSourceNames()))
       ->capture_default_str();
 }
-inline odometry::GuessSource guessSource(const std::string &name) {
-  if (name == "odom") return odometry::GuessSource::kOdometry;
-  if (name == "velocity") return odometry::GuessSource::kConstantVelocity;
-  return odometry::GuessSource::kZero;
-}
+/// The guess source of a name --guess has checked.
+inline odometry::GuessSource guessSource(const std::string &name) { return odometry::guessSourceNamed(name).value(); }
 
 /// --wheel-fusion / --no-wheel-fusion and --wheel-noise: the wheel odometry as a prior (wheel_fusion.h).
 inline void addWheelFusionOptions(CLI::App &command, bool &fuse, odometry::WheelNoise &noise) {

@@ -55,10 +55,10 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
                   "Paths in map metres, one per line: NAME x0 y0 x1 y1 ... (default: S, L, Y, O placed in the map)")
       ->check(CLI::ExistingFile);
   command.add_option("--lidar", options.lidar, "hokuyo (UTM-30LX-like) or ydlidar (X4-like)")
-      ->check(CLI::IsMember({"hokuyo", "ydlidar"}))
+      ->check(CLI::IsMember(simulation::lidarModelNames()))
       ->capture_default_str();
   command.add_option("--motion", options.motion, "stop-and-go (scans at rest) or continuous (distorted scans)")
-      ->check(CLI::IsMember({"stop-and-go", "continuous"}))
+      ->check(CLI::IsMember(simulation::motionNames()))
       ->capture_default_str();
   command.add_option("--speed", options.speed, "Robot speed (m/s)")->capture_default_str()->check(positive());
   command.add_option("--odometry-noise", options.odometry_noise, "Relative wheel odometry noise (>= 0)")
@@ -110,11 +110,10 @@ Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::str
 
 simulation::RunSettings runSettings(const ScenarioOptions &options, double rate, unsigned seed) {
   simulation::RunSettings settings;
-  settings.lidar =
-      options.lidar == "ydlidar" ? simulation::LidarModel::ydlidarX4() : simulation::LidarModel::hokuyoUtm30lx();
+  settings.lidar = simulation::lidarModelNamed(options.lidar).value();  // checked by --lidar
   settings.rate = rate;
   settings.speed = options.speed;
-  settings.motion = options.motion == "continuous" ? simulation::Motion::kContinuous : simulation::Motion::kStopAndGo;
+  settings.motion = simulation::motionNamed(options.motion).value();  // checked by --motion
   settings.odometry_noise = options.odometry_noise;
   settings.odometry_rate = options.odometry_rate;
   settings.seed = seed;

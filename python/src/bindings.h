@@ -24,6 +24,9 @@ void bindOdometry(py::module_ &m);      // odometry()
 void bindEvaluation(py::module_ &m);    // evaluate(), relation_errors(), pose helpers
 void bindSimulation(py::module_ &m);    // simulate()
 
+/// "a, b, c": the names a setting takes, for an error message.
+std::string listed(const std::vector<std::string> &names);
+
 /// A beam-order cloud from a LaserScan (deskewed by `twist` when it has beam timing) or an N x 2
 /// array of points (NaN rows: invalid beams; a twist is a py::value_error).
 /// Throws py::type_error for anything else, py::value_error for a wrong shape.

@@ -8,6 +8,12 @@
 
 namespace contour_reg::python {
 
+std::string listed(const std::vector<std::string> &names) {
+  std::string text;
+  for (const std::string &name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
 odometry::Cloud::Ptr beamsOf(const py::handle &scan, const Twist2D &twist) {
   if (py::isinstance<LaserScan>(scan)) return odometry::beamCloud(scan.cast<const LaserScan &>(), twist);
   if (!twist.isZero()) throw py::value_error("a twist deskews a LaserScan with time_increment, not points");

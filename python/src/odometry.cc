@@ -8,20 +8,17 @@ namespace contour_reg::python {
 
 namespace {
 
-odometry::GuessSource guessSource(const std::string &guess) {
-  if (guess == "zero") return odometry::GuessSource::kZero;
-  if (guess == "odom") return odometry::GuessSource::kOdometry;
-  if (guess == "velocity") return odometry::GuessSource::kConstantVelocity;
-  throw py::value_error("unknown guess '" + guess + "' (zero, odom, velocity)");
-}
-
 odometry::OdometryRun runOdometry(const io::ScanLog &log, const std::string &method, const std::string &guess,
                                   bool keyframes, std::size_t local_map, bool deskew, const std::string &frame,
                                   bool wheel_fusion, const py::kwargs &settings) {
-  if (frame != "robot" && frame != "laser") throw py::value_error("unknown frame '" + frame + "' (robot, laser)");
+  const std::optional<odometry::Frame> frame_named = odometry::frameNamed(frame);
+  if (!frame_named) throw py::value_error("unknown frame '" + frame + "' (" + listed(odometry::frameNames()) + ")");
+  const std::optional<odometry::GuessSource> guess_named = odometry::guessSourceNamed(guess);
+  if (!guess_named)
+    throw py::value_error("unknown guess '" + guess + "' (" + listed(odometry::guessSourceNames()) + ")");
   odometry::OdometryOptions options;
-  options.frame = frame == "laser" ? odometry::Frame::kLaser : odometry::Frame::kRobot;
-  options.guess = guessSource(guess);
+  options.frame = *frame_named;
+  options.guess = *guess_named;
   options.keyframes = keyframes;
   options.local_map_keyframes = local_map;
   options.deskew = deskew;

@@ -18,15 +18,13 @@ simulation::SimulatedRun simulate(const std::string &path, double rate, const st
   if (!(rate > 0.0) || !(speed > 0.0) || !(odometry_noise >= 0.0) || !(resolution > 0.0))
     throw py::value_error("rate (Hz), speed (m/s) and resolution (m) must be > 0, odometry_noise >= 0");
   simulation::RunSettings settings;
-  if (lidar == "hokuyo")
-    settings.lidar = simulation::LidarModel::hokuyoUtm30lx();
-  else if (lidar == "ydlidar")
-    settings.lidar = simulation::LidarModel::ydlidarX4();
-  else
-    throw py::value_error("unknown lidar '" + lidar + "' (hokuyo, ydlidar)");
-  if (motion != "stop-and-go" && motion != "continuous")
-    throw py::value_error("unknown motion '" + motion + "' (stop-and-go, continuous)");
-  settings.motion = motion == "continuous" ? simulation::Motion::kContinuous : simulation::Motion::kStopAndGo;
+  const std::optional<simulation::LidarModel> model = simulation::lidarModelNamed(lidar);
+  if (!model) throw py::value_error("unknown lidar '" + lidar + "' (" + listed(simulation::lidarModelNames()) + ")");
+  const std::optional<simulation::Motion> named_motion = simulation::motionNamed(motion);
+  if (!named_motion)
+    throw py::value_error("unknown motion '" + motion + "' (" + listed(simulation::motionNames()) + ")");
+  settings.lidar = *model;
+  settings.motion = *named_motion;
   settings.rate = rate;
   settings.speed = speed;
   settings.odometry_noise = odometry_noise;

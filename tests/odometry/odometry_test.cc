@@ -139,6 +139,19 @@ TEST(Odometry, TheFirstScanIsDeskewedByTheWheelOdometry) {
   EXPECT_LT(std::abs(step.yaw - truth.yaw), 0.1 * M_PI / 180);
 }
 
+// The command line and Python take guess sources and frames by these names.
+TEST(Odometry, GuessSourcesAndFramesAreKnownByName) {
+  EXPECT_EQ(guessSourceNamed("zero"), GuessSource::kZero);
+  EXPECT_EQ(guessSourceNamed("odom"), GuessSource::kOdometry);
+  EXPECT_EQ(guessSourceNamed("velocity"), GuessSource::kConstantVelocity);
+  EXPECT_EQ(frameNamed("robot"), Frame::kRobot);
+  EXPECT_EQ(frameNamed("laser"), Frame::kLaser);
+  EXPECT_FALSE(guessSourceNamed("Odom").has_value());
+  EXPECT_FALSE(frameNamed("").has_value());
+  EXPECT_EQ(guessSourceNames().size(), 3u);
+  EXPECT_EQ(frameNames().size(), 2u);
+}
+
 // Deskewing is on by default, and scans without beam timing are left as they are.
 TEST(Odometry, DeskewingIsOnByDefaultAndLeavesStoppedScansAlone) {
   EXPECT_TRUE(OdometryOptions{}.deskew);

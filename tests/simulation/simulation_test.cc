@@ -220,6 +220,18 @@ TEST(SimulatedRun, ContinuousMotionDistortsTheScan) {
   EXPECT_GT(std::abs(a.back() - b.back()), 0.3);
 }
 
+// The command line and Python take LIDAR models and motions by these names.
+TEST(SimulatedRun, LidarModelsAndMotionsAreKnownByName) {
+  EXPECT_EQ(lidarModelNamed("hokuyo")->beams, LidarModel::hokuyoUtm30lx().beams);
+  EXPECT_EQ(lidarModelNamed("ydlidar")->beams, LidarModel::ydlidarX4().beams);
+  EXPECT_FALSE(lidarModelNamed("sick").has_value());
+  EXPECT_EQ(motionNamed("stop-and-go"), Motion::kStopAndGo);
+  EXPECT_EQ(motionNamed("continuous"), Motion::kContinuous);
+  EXPECT_FALSE(motionNamed("moving").has_value());
+  EXPECT_EQ(lidarModelNames().size(), 2u);
+  EXPECT_EQ(motionNames().size(), 2u);
+}
+
 // The wheel odometry is logged as a robot's /odom is, between the scans as well as at them:
 // exact without noise, and at each scan's stamp the scan's own odometry.
 TEST(SimulatedRun, WheelOdometryIsLoggedBetweenTheScans) {

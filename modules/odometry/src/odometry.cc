@@ -61,6 +61,14 @@ Fused fuseWithWheels(MatchResult &match, const io::Pose2D &wheel, const Eigen::M
   return by_pinned ? Fused::kPinned : Fused::kConverged;
 }
 
+// The value of an enum whose values are named by `names` in order; none for another name.
+template <class Enum>
+std::optional<Enum> enumNamed(const std::vector<std::string> &names, const std::string &name) {
+  const auto at = std::find(names.begin(), names.end(), name);
+  if (at == names.end()) return std::nullopt;
+  return static_cast<Enum>(at - names.begin());
+}
+
 // The run's trajectory and steps, found in the laser's frame, in the robot's.
 void toRobotFrame(OdometryRun &run, const io::Pose2D &laser_pose) {
   for (io::StampedPose &p : run.trajectory) p.pose = io::robotMotion(p.pose, laser_pose);
@@ -72,6 +80,22 @@ void toRobotFrame(OdometryRun &run, const io::Pose2D &laser_pose) {
 }
 
 }  // namespace
+
+const std::vector<std::string> &guessSourceNames() {
+  static const std::vector<std::string> names{"zero", "odom", "velocity"};
+  return names;
+}
+
+const std::vector<std::string> &frameNames() {
+  static const std::vector<std::string> names{"robot", "laser"};
+  return names;
+}
+
+std::optional<GuessSource> guessSourceNamed(const std::string &name) {
+  return enumNamed<GuessSource>(guessSourceNames(), name);
+}
+
+std::optional<Frame> frameNamed(const std::string &name) { return enumNamed<Frame>(frameNames(), name); }
 
 Twist2D twistOver(const io::Pose2D &motion, double dt) { return {motion.x / dt, motion.y / dt, motion.yaw / dt}; }
 

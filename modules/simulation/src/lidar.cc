@@ -24,6 +24,17 @@ LidarModel LidarModel::ydlidarX4() {
   return model;
 }
 
+const std::vector<std::string> &lidarModelNames() {
+  static const std::vector<std::string> names{"hokuyo", "ydlidar"};
+  return names;
+}
+
+std::optional<LidarModel> lidarModelNamed(const std::string &name) {
+  if (name == "hokuyo") return LidarModel::hokuyoUtm30lx();
+  if (name == "ydlidar") return LidarModel::ydlidarX4();
+  return std::nullopt;
+}
+
 LaserScan simulateScan(const World &world, const Eigen::Isometry2d &pose, const LidarModel &model, std::mt19937 &rng) {
   return simulateScan(
       world, [&pose](std::size_t) { return pose; }, model, rng);

@@ -15,6 +15,18 @@ io::Pose2D toPose(const Eigen::Isometry2d &pose) { return io::toPose(pose.matrix
 
 }  // namespace
 
+const std::vector<std::string> &motionNames() {
+  static const std::vector<std::string> names{"stop-and-go", "continuous"};
+  return names;
+}
+
+std::optional<Motion> motionNamed(const std::string &name) {
+  const auto &names = motionNames();
+  const auto at = std::find(names.begin(), names.end(), name);
+  if (at == names.end()) return std::nullopt;
+  return static_cast<Motion>(at - names.begin());
+}
+
 SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> &waypoints,
                          const RunSettings &settings) {
   SimulatedRun run;

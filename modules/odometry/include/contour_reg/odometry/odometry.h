@@ -31,6 +31,13 @@ enum class Frame {
   kLaser,  ///< the laser's, where the scans are taken
 };
 
+/// The names the command line and Python give the guess sources (zero, odom, velocity) and the
+/// frames (robot, laser), in the enums' order, and the value of a name; none for another name.
+const std::vector<std::string> &guessSourceNames();
+const std::vector<std::string> &frameNames();
+std::optional<GuessSource> guessSourceNamed(const std::string &name);
+std::optional<Frame> frameNamed(const std::string &name);
+
 struct OdometryOptions {
   GuessSource guess = GuessSource::kZero;
   /// The frame of the trajectory and the steps. The scans are registered in the laser's frame

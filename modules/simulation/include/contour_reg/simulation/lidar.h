@@ -3,8 +3,10 @@
 /// A simulated 2-D LIDAR: beam geometry, range limits, Gaussian range noise and dropout.
 
 #include <functional>
+#include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -29,6 +31,11 @@ struct LidarModel {
   /// YDLidar X4-like: 720 beams over 360 deg, 10 m, 2 cm noise, 1 % dropout.
   static LidarModel ydlidarX4();
 };
+
+/// The LIDAR models the command line and Python name: hokuyo (hokuyoUtm30lx), ydlidar
+/// (ydlidarX4); the model of a name, none for another name.
+const std::vector<std::string> &lidarModelNames();
+std::optional<LidarModel> lidarModelNamed(const std::string &name);
 
 /// Simulates one scan from `pose` (sensor frame in the world). A beam with no echo
 /// reads NaN. `rng` drives noise and dropout; a fixed seed fixes the scan.

@@ -3,6 +3,8 @@
 /// A robot driving a path through a world with a LIDAR: the scans it logs, its wheel
 /// odometry and its true poses, ready for the same readers and metrics as a real log.
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,6 +20,11 @@ enum class Motion {
   kStopAndGo,   ///< the robot stands still while the LIDAR sweeps (the paper's experiment)
   kContinuous,  ///< the robot keeps moving; each beam is taken from where the robot is when it fires
 };
+
+/// The motions the command line and Python name: stop-and-go, continuous (the enum's order);
+/// the motion of a name, none for another name.
+const std::vector<std::string> &motionNames();
+std::optional<Motion> motionNamed(const std::string &name);
 
 struct RunSettings {
   LidarModel lidar = LidarModel::hokuyoUtm30lx();
