@@ -30,6 +30,7 @@ struct RelationsOptions {
   std::string pairs_csv;         // one row per relation and method, when set
   std::size_t log_pose_gap = 0;  // > 0: pairs k, k + gap referenced by the log's own poses
   std::string frame = "robot";
+  bool deskew = true;
   io::LogReadOptions read;
   MethodOptions method_options;
 };
@@ -97,6 +98,11 @@ int runRelations(const RelationsOptions &options) {
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
+  // The motion over a timed scan's sweep, by the wheel odometry, as the odometry deskews it.
+  auto sweep = [&](std::size_t k) {
+    const bool timed = options.deskew && log.entries[k].scan.time_increment > 0.0;
+    return timed ? odometry::wheelMotionOverSweep(log, k).value_or(SweepMotion{}) : SweepMotion{};
+  };
   std::fflush(stdout);
   std::vector<std::string> failures;  // printed after the table
   for (const std::string &name : options.methods) {
@@ -109,7 +115,8 @@ int runRelations(const RelationsOptions &options) {
     for (const ScanPair &pair : pairs) {
       progress(ms.size(), pairs.size());
       const io::Relation &r = pair.reference;
-      odometry::MatchResult match = matcher->match(log.entries[pair.first].scan, log.entries[pair.second].scan);
+      odometry::MatchResult match = matcher->match(log.entries[pair.first].scan, log.entries[pair.second].scan,
+                                                   Eigen::Matrix3d::Identity(), sweep(pair.first), sweep(pair.second));
       if (robot_frame) {  // the references are the robot's motions
         const io::Pose2D laser_motion = io::toPose(match.transform);
         match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
@@ -177,6 +184,9 @@ void addRelationsCommand(CLI::App &app) {
   addMethodOptions(*command, options->method_options);
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
+  command->add_flag("--deskew,!--no-deskew", options->deskew,
+                    "Deskew scans that carry beam timing by the wheel odometry over each sweep, when the log has "
+                    "it (on by default)");
   command->callback([options, relations, gap]() {
     if (relations->count() == 0 && gap->count() == 0) throw CLI::RequiredError("--relations or --log-poses");
     if (gap->count() > 0 && options->log_pose_gap == 0) throw CLI::ValidationError("--log-poses", "must be >= 1");

@@ -106,6 +106,18 @@ if(WITH_ROSBAG)
   if(NOT percent_deskew LESS 2 OR NOT percent_no-deskew GREATER 5)
     message(FATAL_ERROR "moving.bag: end-point error ${percent_deskew} % deskewed, ${percent_no-deskew} % raw")
   endif()
+  # relations deskews the pairs it registers as the odometry does.
+  foreach(mode deskew no-deskew)
+    expect_run(0 relations ${WORK_DIR}/moving.bag --log-poses 1 --methods contour --${mode})
+    string(REGEX MATCH "\\| contour \\| ([0-9.]+) %" found "${LAST_OUT}")
+    if(NOT found)
+      message(FATAL_ERROR "no contour row in:\n${LAST_OUT}")
+    endif()
+    set(recovered_${mode} ${CMAKE_MATCH_1})
+  endforeach()
+  if(NOT recovered_deskew GREATER 95 OR NOT recovered_no-deskew LESS 90)
+    message(FATAL_ERROR "moving.bag pairs: ${recovered_deskew} % recovered deskewed, ${recovered_no-deskew} % raw")
+  endif()
 endif()
 
 # simulate on a map image, and a path that fits nowhere.
