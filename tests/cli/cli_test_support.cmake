@@ -19,3 +19,14 @@ function(expect_match text pattern)
     message(FATAL_ERROR "expected /${pattern}/ in:\n${text}")
   endif()
 endfunction()
+
+# Sets `variable` to the first group of `pattern` in `text`; fails when `text` has no match.
+function(number_in text pattern variable)
+  if(NOT text MATCHES "${pattern}")
+    message(FATAL_ERROR "expected /${pattern}/ in:\n${text}")
+  endif()
+  set(${variable} ${CMAKE_MATCH_1} PARENT_SCOPE)
+endfunction()
+
+# The end-point error (% of the path) that `evaluate` printed.
+set(END_POINT_PERCENT "end-point error: [0-9.]+ m over [0-9.]+ m of ground-truth path = ([0-9.]+) %")

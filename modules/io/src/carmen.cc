@@ -169,17 +169,15 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
     std::fprintf(file, "ODOM %.6f %.6f %.6f 0 0 0 %.6f sim %.6f\n", sample.pose.x, sample.pose.y, sample.pose.yaw,
                  sample.stamp, sample.stamp);
   };
+  const std::vector<StampedPose> odometry = detail::odometryToWrite(log);
   std::size_t next_odometry = 0;
   for (const LogEntry &entry : log.entries) {
     const LaserScan &s = entry.scan;
     const Pose2D pose = entry.odometry.value_or(Pose2D{});
     const Pose2D laser = compose(pose, log.laser_pose.value_or(Pose2D{}));
     const double max_range = s.range_max > 0.0 ? s.range_max : 80.0;
-    // The wheel odometry up to this scan: the log's samples, or the scan's own odometry.
-    for (; next_odometry < log.wheel_odometry.size() && log.wheel_odometry[next_odometry].stamp <= s.stamp;
-         ++next_odometry)
-      writeOdometry(log.wheel_odometry[next_odometry]);
-    if (entry.odometry && log.wheel_odometry.empty()) writeOdometry({s.stamp, pose});
+    for (; next_odometry < odometry.size() && odometry[next_odometry].stamp <= s.stamp; ++next_odometry)
+      writeOdometry(odometry[next_odometry]);  // the odometry up to this scan
     std::fprintf(file, "ROBOTLASER1 0 %.9f %.9f %.9f %.3f 0.01 0 %zu", s.angle_min,
                  s.angle_increment * static_cast<double>(s.ranges.size() > 0 ? s.ranges.size() - 1 : 0),
                  s.angle_increment, max_range, s.ranges.size());
@@ -187,7 +185,7 @@ void writeCarmen(const std::string &path, const ScanLog &log) {
     std::fprintf(file, " 0 %.6f %.6f %.6f %.6f %.6f %.6f 0 0 0 0 0 %.6f sim %.6f\n", laser.x, laser.y, laser.yaw,
                  pose.x, pose.y, pose.yaw, s.stamp, s.stamp);
   }
-  for (; next_odometry < log.wheel_odometry.size(); ++next_odometry) writeOdometry(log.wheel_odometry[next_odometry]);
+  for (; next_odometry < odometry.size(); ++next_odometry) writeOdometry(odometry[next_odometry]);
   const bool ok = std::fflush(file) == 0;
   std::fclose(file);
   if (!ok) throw ReadError(path + ": write failed");

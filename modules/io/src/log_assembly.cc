@@ -28,4 +28,12 @@ void finishLog(ScanLog &log, std::vector<StampedPose> odometry) {
   log.wheel_odometry = std::move(odometry);
 }
 
+std::vector<StampedPose> odometryToWrite(const ScanLog &log) {
+  if (!log.wheel_odometry.empty()) return log.wheel_odometry;
+  std::vector<StampedPose> own;
+  for (const LogEntry &entry : log.entries)
+    if (entry.odometry) own.push_back({entry.scan.stamp, *entry.odometry});
+  return own;
+}
+
 }  // namespace contour_reg::io::detail

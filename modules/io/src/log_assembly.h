@@ -17,4 +17,8 @@ std::optional<Pose2D> interpolatePose(const std::vector<StampedPose> &samples, d
 /// interpolated from it at its stamp.
 void finishLog(ScanLog &log, std::vector<StampedPose> odometry);
 
+/// The odometry a writer writes for `log`, in stamp order: its wheel_odometry samples, or the
+/// scans' own odometry when it keeps none.
+std::vector<StampedPose> odometryToWrite(const ScanLog &log);
+
 }  // namespace contour_reg::io::detail

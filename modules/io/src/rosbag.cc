@@ -184,6 +184,7 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Write);
     std::uint32_t sequence = 0, odometry_sequence = 0;
+    const std::vector<StampedPose> samples = detail::odometryToWrite(log);
     std::size_t next_odometry = 0;
     auto writeOdometry = [&](const StampedPose &sample) {
       if (!(sample.stamp >= 0.0) || !std::isfinite(sample.stamp))
@@ -242,14 +243,11 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
         transforms.transforms.push_back(mounting);
         bag.write("/tf_static", recorded, transforms);
       }
-      // The wheel odometry up to this scan: the log's samples, or the scan's own odometry.
-      for (; next_odometry < log.wheel_odometry.size() && log.wheel_odometry[next_odometry].stamp <= scan.stamp;
-           ++next_odometry)
-        writeOdometry(log.wheel_odometry[next_odometry]);
+      for (; next_odometry < samples.size() && samples[next_odometry].stamp <= scan.stamp; ++next_odometry)
+        writeOdometry(samples[next_odometry]);  // the odometry up to this scan
       bag.write("/scan", recorded, message);
-      if (entry.odometry && log.wheel_odometry.empty()) writeOdometry({scan.stamp, *entry.odometry});
     }
-    for (; next_odometry < log.wheel_odometry.size(); ++next_odometry) writeOdometry(log.wheel_odometry[next_odometry]);
+    for (; next_odometry < samples.size(); ++next_odometry) writeOdometry(samples[next_odometry]);
     bag.close();
   } catch (const std::exception &error) {
     throw ReadError(path + ": cannot write the bag: " + error.what());

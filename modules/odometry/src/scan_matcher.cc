@@ -137,14 +137,13 @@ Cloud::Ptr ScanMatcher::cloudFor(const LaserScan &scan, const SweepMotion &motio
 MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source, const Eigen::Matrix3d &guess,
                                const SweepMotion &target_motion, const SweepMotion &source_motion) {
   // The clouds first (scan conversion is not the registration's time), then what changed.
-  const bool new_target = !(keyOf(target, target_motion) == target_key_);
-  const bool swap =
-      new_target && keyOf(target, target_motion) == source_key_ && swap_source_and_target_ && source_cloud_;
-  const bool new_source = !(keyOf(source, source_motion) == (swap ? target_key_ : source_key_));
+  ScanKey target_key = keyOf(target, target_motion), source_key = keyOf(source, source_motion);
+  const bool new_target = !(target_key == target_key_);
+  const bool was_source = new_target && target_key == source_key_;
+  const bool swap = was_source && swap_source_and_target_ && source_cloud_;
+  const bool new_source = !(source_key == (swap ? target_key_ : source_key_));
   Cloud::Ptr next_target =
-      new_target && !swap
-          ? (keyOf(target, target_motion) == source_key_ ? source_cloud_ : cloudFor(target, target_motion))
-          : nullptr;
+      new_target && !swap ? (was_source ? source_cloud_ : cloudFor(target, target_motion)) : nullptr;
   Cloud::Ptr next_source = new_source ? cloudFor(source, source_motion) : nullptr;
 
   const auto start = std::chrono::steady_clock::now();
@@ -154,12 +153,12 @@ MatchResult ScanMatcher::match(const LaserScan &target, const LaserScan &source,
     std::swap(source_key_, target_key_);
   } else if (new_target) {
     target_cloud_ = std::move(next_target);
-    target_key_ = keyOf(target, target_motion);
+    target_key_ = std::move(target_key);
     registration_->setInputTarget(target_cloud_);
   }
   if (new_source) {
     source_cloud_ = std::move(next_source);
-    source_key_ = keyOf(source, source_motion);
+    source_key_ = std::move(source_key);
     registration_->setInputSource(source_cloud_);
   }
   return align(guess, start);

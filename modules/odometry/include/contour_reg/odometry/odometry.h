@@ -67,9 +67,9 @@ struct OdometryOptions {
   /// they are.
   bool fuse_wheel_odometry = true;
   WheelNoise wheel_noise;  ///< the wheels' error model for the fusion
-  /// Scans that carry beam timing (LaserScan::time_increment) are deskewed (deskew.h) with the
-  /// motion over their sweep as a constant twist: the wheel odometry from the scan's stamp to
-  /// the next scan's when the log has it; otherwise the constant-velocity prediction (the
+  /// Scans that carry beam timing (LaserScan::time_increment), the first one included, are
+  /// deskewed (deskew.h) with the motion over their sweep: the wheel odometry's
+  /// (wheelMotionOverSweep) when the log has it; otherwise the constant-velocity prediction (the
   /// previous motion over its interval), then, once registered, the motion that registration
   /// found, and registered again (scan to scan only). Scans without beam timing are left as
   /// they are. Simulated continuous runs: docs/experiment.md.
