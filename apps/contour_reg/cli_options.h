@@ -154,6 +154,13 @@ void checkOutputFile(const std::string &option, const std::string &path);
 /// `option` and the path when it cannot (a file of that name exists, no permission).
 void prepareOutputFolder(const std::string &option, const std::string &path);
 
+/// --deskew / --no-deskew: scans with beam timing deskewed by the motion over their sweep (deskew.h).
+inline void addDeskewOption(CLI::App &command, bool &deskew) {
+  command.add_flag("--deskew,!--no-deskew", deskew,
+                   "Deskew scans that carry beam timing with the motion over each sweep, by the wheel odometry when "
+                   "the log has it (on by default; docs/algorithm.md)");
+}
+
 /// --guess: where each registration's initial guess comes from.
 inline void addGuessOption(CLI::App &command, std::string &guess) {
   command.add_option("--guess", guess, "Initial guess: zero, odom (wheel odometry), velocity")

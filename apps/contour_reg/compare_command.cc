@@ -332,9 +332,7 @@ void addCompareCommand(CLI::App &app) {
                    "Match against a local map of the last N keyframes, not the previous scan (0-100, 0: off)")
       ->capture_default_str()
       ->check(inRange(0, 100));
-  command->add_flag("--deskew,!--no-deskew", options->deskew,
-                    "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
-                    "the log has it (on by default)");
+  addDeskewOption(*command, options->deskew);
   addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");
   command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")

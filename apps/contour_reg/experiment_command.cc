@@ -292,9 +292,7 @@ void addExperimentCommand(CLI::App &app) {
   command->add_option("--seed", options->seed, "Seed of the first arrival")->capture_default_str();
   command->add_option("--jobs,-j", options->jobs, "Parallel arrivals (default: one per core)");
   addGuessOption(*command, options->guess);
-  command->add_flag("--deskew,!--no-deskew", options->deskew,
-                    "Deskew scans taken while moving (--motion continuous) with the motion over each scan, by "
-                    "wheel odometry (on by default)");
+  addDeskewOption(*command, options->deskew);
   addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   addScenarioOptions(*command, options->scenario);
   addMethodOptions(*command, options->method_options);

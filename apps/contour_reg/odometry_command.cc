@@ -114,9 +114,7 @@ void addOdometryCommand(CLI::App &app) {
                    "Match against a local map of the last N keyframes, not the previous scan (0-100, 0: off)")
       ->capture_default_str()
       ->check(inRange(0, 100));
-  command->add_flag("--deskew,!--no-deskew", options->deskew,
-                    "Deskew scans that carry beam timing with the motion over each scan, by wheel odometry when "
-                    "the log has it (on by default; docs/algorithm.md)");
+  addDeskewOption(*command, options->deskew);
   addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
       ->capture_default_str()

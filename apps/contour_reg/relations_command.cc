@@ -184,9 +184,7 @@ void addRelationsCommand(CLI::App &app) {
   addMethodOptions(*command, options->method_options);
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
-  command->add_flag("--deskew,!--no-deskew", options->deskew,
-                    "Deskew scans that carry beam timing by the wheel odometry over each sweep, when the log has "
-                    "it (on by default)");
+  addDeskewOption(*command, options->deskew);
   command->callback([options, relations, gap]() {
     if (relations->count() == 0 && gap->count() == 0) throw CLI::RequiredError("--relations or --log-poses");
     if (gap->count() > 0 && options->log_pose_gap == 0) throw CLI::ValidationError("--log-poses", "must be >= 1");
