@@ -21,6 +21,8 @@ struct BearingIndex {
   std::vector<Eigen::Vector2d> points;
   std::vector<int> segment;  // the contour of each point
   std::vector<double> bearing;
+  std::vector<Eigen::Vector2d> normals;  // computeNormal of each point, once per target
+  std::vector<char> has_normal;
   std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (contour, vertex): kept for the next build
   // Bearing buckets of equal width over [-pi, pi): the first point at or above each bucket's
   // lower edge, so a search starts a few points before its answer instead of bisecting.
@@ -42,6 +44,9 @@ struct BearingIndex {
       segment.push_back(where.first);
       bearing.push_back(b);
     }
+    normals.assign(points.size(), Eigen::Vector2d::Zero());
+    has_normal.assign(points.size(), 0);
+    for (std::size_t j = 0; j < points.size(); ++j) has_normal[j] = computeNormal(static_cast<int>(j), normals[j]);
     const long buckets = 4 * static_cast<long>(bearing.size()) + 1;
     buckets_per_rad = static_cast<double>(buckets) / (2.0 * M_PI);
     bucket_first.resize(static_cast<std::size_t>(buckets));
@@ -88,8 +93,14 @@ struct BearingIndex {
     return best;
   }
 
-  // Unit normal of the target contour at point j, from its neighbours in the same contour.
+  // Unit normal of the target contour at point j (false where it has none).
   bool normalAt(int j, Eigen::Vector2d &normal) const {
+    normal = normals[j];
+    return has_normal[j];
+  }
+
+  // The normal at point j from its neighbours in the same contour, two on each side.
+  bool computeNormal(int j, Eigen::Vector2d &normal) const {
     int lo = j, hi = j;
     for (int k = 0; k < 2; ++k) {
       if (lo > 0 && segment[lo - 1] == segment[j]) --lo;
