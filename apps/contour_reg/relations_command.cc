@@ -12,6 +12,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "contour_reg/core/transform_estimation.h"
+#include "contour_reg/evaluation/free_space_check.h"
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
@@ -21,6 +22,9 @@
 namespace contour_reg::cli {
 
 namespace {
+
+// A converged estimate this far from the reference is a gross error (m, deg).
+constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;
 
 struct RelationsOptions {
   std::string input, relations;
@@ -93,7 +97,8 @@ int runRelations(const RelationsOptions &options) {
     if (!csv) throw std::runtime_error("cannot write " + options.pairs_csv);
     std::fprintf(csv,
                  "method,first,second,t1_s,t2_s,ref_x_m,ref_y_m,ref_yaw_rad,est_x_m,est_y_m,est_yaw_rad,converged,"
-                 "recovered,error_m,error_deg,ms,status,reason,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw\n");
+                 "recovered,error_m,error_deg,ms,status,reason,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,"
+                 "ref_free_space,est_free_space\n");
   }
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
@@ -104,19 +109,26 @@ int runRelations(const RelationsOptions &options) {
     return timed ? odometry::wheelMotionOverSweep(log, k).value_or(SweepMotion{}) : SweepMotion{};
   };
   std::fflush(stdout);
-  std::vector<std::string> failures;  // printed after the table
+  std::vector<std::string> failures;     // printed after the table
+  std::vector<std::string> gross_lines;  // likewise
   for (const std::string &name : options.methods) {
     auto matcher = odometry::makeScanMatcher(name, options.method_options.settings());
     std::map<std::string, int> reasons;
     ProgressBar progress(name);
-    std::size_t recovered = 0, converged = 0, wrong = 0;
+    std::size_t recovered = 0, converged = 0, wrong = 0, gross = 0, gross_against_reference = 0;
     double error_sum = 0.0;
     std::vector<double> ms;
     for (const ScanPair &pair : pairs) {
       progress(ms.size(), pairs.size());
       const io::Relation &r = pair.reference;
-      odometry::MatchResult match = matcher->match(log.entries[pair.first].scan, log.entries[pair.second].scan,
-                                                   Eigen::Matrix3d::Identity(), sweep(pair.first), sweep(pair.second));
+      const LaserScan &first = log.entries[pair.first].scan, &second = log.entries[pair.second].scan;
+      odometry::MatchResult match =
+          matcher->match(first, second, Eigen::Matrix3d::Identity(), sweep(pair.first), sweep(pair.second));
+      // Each motion's evidence in the scans themselves, in the laser's frame like the scans.
+      const evaluation::FreeSpaceCheck free_space(first, second);
+      const double est_free_space = free_space.contradictedShare(match.transform);
+      const double ref_free_space = free_space.contradictedShare(
+          io::toMatrix(robot_frame ? io::laserMotion(r.motion, *log.laser_pose) : r.motion));
       if (robot_frame) {  // the references are the robot's motions
         const io::Pose2D laser_motion = io::toPose(match.transform);
         match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
@@ -131,15 +143,21 @@ int runRelations(const RelationsOptions &options) {
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
       wrong += match.converged && !ok;
+      if (match.converged && (et > kGrossMetres || er > kGrossDegrees)) {
+        ++gross;
+        // The scans contradict the reference and not the estimate: an error of the reference.
+        gross_against_reference += est_free_space < evaluation::kFreeSpaceShareTie &&
+                                   ref_free_space > est_free_space + evaluation::kFreeSpaceShareTie;
+      }
       if (csv) {
         const Eigen::Matrix3d &c = match.covariance;
         std::fprintf(csv,
                      "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\","
-                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e\n",
+                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f\n",
                      name.c_str(), pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2),
                      t(1, 2), yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er, match.milliseconds,
                      match.converged ? "converged" : match.status.c_str(), match.reason.c_str(), c(0, 0), c(0, 1),
-                     c(0, 2), c(1, 1), c(1, 2), c(2, 2));
+                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space);
       }
       if (match.converged && ok) {
         ++recovered;
@@ -151,11 +169,19 @@ int runRelations(const RelationsOptions &options) {
     std::printf("| %s | %.1f %% | %.1f %% | %.1f %% | %.3f | %.3f | %.3f |\n", name.c_str(), 100 * recovered / n,
                 100 * converged / n, 100 * wrong / n, recovered ? error_sum / recovered : 0.0, percentile(ms, 0.5),
                 percentile(ms, 0.95));
+    gross_lines.push_back(name + ": " + std::to_string(gross) + " gross error(s) (converged, over " +
+                          std::to_string(static_cast<int>(100 * kGrossMetres)) + " cm or " +
+                          std::to_string(static_cast<int>(kGrossDegrees)) + " deg off), " +
+                          std::to_string(gross_against_reference) +
+                          " with a reference the scans contradict and an estimate they do not (returns in the other "
+                          "scan's free space; --pairs-csv: ref_free_space, est_free_space)");
     for (const auto &[reason, count] : reasons)
       failures.push_back(name + " failed: " + reason + ": " + std::to_string(count));
     std::fflush(stdout);
   }
   if (csv) std::fclose(csv);
+  std::printf("\n");
+  for (const std::string &line : gross_lines) std::printf("%s\n", line.c_str());
   for (const std::string &line : failures) std::fprintf(stderr, "%s\n", line.c_str());
   return 0;
 }

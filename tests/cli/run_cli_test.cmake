@@ -106,6 +106,26 @@ if(WITH_ROSBAG)
   endif()
 endif()
 
+# relations tells a reference the scans contradict from a registration failure: the robot drove
+# 0.25 m straight ahead between the scans at 0 and 0.5 s and again up to 1 s; the second relation
+# claims 1.5 m.
+file(WRITE ${WORK_DIR}/straight.relations "0.0 0.5 0.25 0 0 0 0 0\n0.5 1.0 1.5 0 0 0 0 0\n")
+expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour
+           --pairs-csv ${WORK_DIR}/straight.csv)
+expect_match("${LAST_OUT}" "contour: 1 gross error\\(s\\) [^\n]*, 1 with a reference the scans contradict and an estimate they do not")
+file(STRINGS ${WORK_DIR}/straight.csv rows REGEX "^contour,")
+foreach(row IN LISTS rows)
+  string(REPLACE "," ";" fields "${row}")
+  list(GET fields 5 claimed)
+  list(GET fields 24 reference_share)
+  list(GET fields 25 estimate_share)
+  # The estimate is hardly contradicted; the reference claiming 1.5 m is, the true one is not.
+  if(NOT estimate_share LESS 0.02 OR (claimed STREQUAL "1.5000" AND NOT reference_share GREATER 0.1)
+     OR (claimed STREQUAL "0.2500" AND NOT reference_share LESS 0.02))
+    message(FATAL_ERROR "relations free space: reference ${reference_share}, estimate ${estimate_share} in ${row}")
+  endif()
+endforeach()
+
 # simulate on a map image, and a path that fits nowhere.
 file(WRITE ${WORK_DIR}/paths.txt "# name x y ...\nshort 1 1 3 1\n")
 expect_run(0 simulate --map office --paths-file ${WORK_DIR}/paths.txt --path short --out ${WORK_DIR}/short.clf)

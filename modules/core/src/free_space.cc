@@ -32,14 +32,28 @@ FreeSpaceEvidence &FreeSpaceEvidence::operator+=(const FreeSpaceEvidence &other)
   return *this;
 }
 
+void RangeView::add(const Complex &point) {
+  bearings_.push_back(std::arg(point));
+  ranges_.push_back(std::abs(point));
+}
+
 void RangeView::assign(const ContourFeatures &scan) {
   bearings_.clear();
   ranges_.clear();
   for (const ContourSegment &segment : scan.segments)
-    for (const Complex &p : segment.points) {
-      bearings_.push_back(std::arg(p));
-      ranges_.push_back(std::abs(p));
-    }
+    for (const Complex &p : segment.points) add(p);
+  index();
+}
+
+void RangeView::assign(const ComplexSequence &points) {
+  bearings_.clear();
+  ranges_.clear();
+  for (const Complex &p : points)
+    if (isFinite(p)) add(p);
+  index();
+}
+
+void RangeView::index() {
   if (!std::is_sorted(bearings_.begin(), bearings_.end())) {
     std::vector<std::size_t> order(bearings_.size());
     std::iota(order.begin(), order.end(), std::size_t{0});

@@ -56,6 +56,9 @@ class RangeView {
   explicit RangeView(const ContourFeatures &scan) { assign(scan); }
   /// Rebuilds the view of `scan`, reusing the buffers.
   void assign(const ContourFeatures &scan);
+  /// Rebuilds the view of a scan's points in its sensor frame (a polar code: NaN points are
+  /// no-returns and are skipped), isolated returns too.
+  void assign(const ComplexSequence &points);
   /// The range the scan measured at `bearing` (rad): the nearer of the two bracketing
   /// returns, or a negative value where it has no evidence (outside its view, in a gap).
   double rangeAt(double bearing) const;
@@ -63,7 +66,9 @@ class RangeView {
  private:
   std::vector<double> bearings_, ranges_;
   std::vector<double> spacing_;  // working memory of assign()
-  double max_gap_ = 0.0;         // rad, bracketing returns farther apart than this leave a gap
+  void add(const Complex &point);
+  void index();           // sorts by bearing and sets max_gap_
+  double max_gap_ = 0.0;  // rad, bracketing returns farther apart than this leave a gap
 };
 
 /// The evidence of `target`'s view against the source's contour moved by `motion` (source to
