@@ -124,13 +124,10 @@ int runRelations(const RelationsOptions &options) {
       const LaserScan &first = log.entries[pair.first].scan, &second = log.entries[pair.second].scan;
       odometry::MatchResult match =
           matcher->match(first, second, Eigen::Matrix3d::Identity(), sweep(pair.first), sweep(pair.second));
-      // Each motion's evidence in the scans themselves, in the laser's frame like the scans.
-      const evaluation::FreeSpaceCheck free_space(first, second);
-      const double est_free_space = free_space.contradictedShare(match.transform);
-      const double ref_free_space = free_space.contradictedShare(
-          io::toMatrix(robot_frame ? io::laserMotion(r.motion, *log.laser_pose) : r.motion));
-      if (robot_frame) {  // the references are the robot's motions
-        const io::Pose2D laser_motion = io::toPose(match.transform);
+      const Eigen::Matrix3d laser_transform = match.transform;  // in the scans' frame
+      // The references are the robot's motions.
+      if (robot_frame) {
+        const io::Pose2D laser_motion = io::toPose(laser_transform);
         match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
         match.transform = io::toMatrix(io::robotMotion(laser_motion, *log.laser_pose));
       }
@@ -143,7 +140,17 @@ int runRelations(const RelationsOptions &options) {
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
       wrong += match.converged && !ok;
-      if (match.converged && (et > kGrossMetres || er > kGrossDegrees)) {
+      const bool gross_error = match.converged && (et > kGrossMetres || er > kGrossDegrees);
+      // Each motion's evidence in the scans themselves, in the laser's frame like the scans:
+      // for the CSV and for the gross errors.
+      double est_free_space = 0.0, ref_free_space = 0.0;
+      if (csv || gross_error) {
+        const evaluation::FreeSpaceCheck free_space(first, second);
+        est_free_space = free_space.contradictedShare(laser_transform);
+        ref_free_space = free_space.contradictedShare(
+            io::toMatrix(robot_frame ? io::laserMotion(r.motion, *log.laser_pose) : r.motion));
+      }
+      if (gross_error) {
         ++gross;
         // The scans contradict the reference and not the estimate: an error of the reference.
         gross_against_reference += est_free_space < evaluation::kFreeSpaceShareTie &&

@@ -92,6 +92,12 @@ double RangeView::rangeAt(double bearing) const {
   return std::min(ranges_[lo], ranges_[hi]);
 }
 
+RangeView::Sight RangeView::sightOf(const Eigen::Vector2d &point, double margin) const {
+  const double measured = rangeAt(std::atan2(point.y(), point.x()));
+  if (measured < 0.0) return Sight::kNoEvidence;
+  return point.norm() < measured - margin ? Sight::kSeenThrough : Sight::kNotThrough;
+}
+
 FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeView &target_view,
                                     const Eigen::Matrix3d &motion, const FreeSpaceParams &params,
                                     std::vector<Eigen::Vector2d> *contradicted) {
@@ -123,13 +129,13 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
     };
     for (std::size_t n = 0; n < points.size(); n += stride) {
       const Eigen::Vector2d moved = rotation * Eigen::Vector2d(points[n].real(), points[n].imag()) + translation;
-      const double measured = target_view.rangeAt(std::atan2(moved.y(), moved.x()));
-      if (measured < 0.0) {
+      const RangeView::Sight sight = target_view.sightOf(moved, params.margin);
+      if (sight == RangeView::Sight::kNoEvidence) {
         closeRun();
         continue;
       }
       evidence.tested_length += sample_length;
-      if (moved.norm() < measured - params.margin) {
+      if (sight == RangeView::Sight::kSeenThrough) {
         if (!in_run) run_start = n;
         run_end = n;
         in_run = true;

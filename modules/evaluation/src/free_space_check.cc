@@ -20,10 +20,10 @@ void check(const ComplexSequence &points, const RangeView &view, const Eigen::Ma
     if (!isFinite(p)) continue;
     const Eigen::Vector2d moved =
         motion.topLeftCorner<2, 2>() * Eigen::Vector2d(p.real(), p.imag()) + motion.topRightCorner<2, 1>();
-    const double measured = view.rangeAt(std::atan2(moved.y(), moved.x()));
-    if (measured < 0.0) continue;
+    const RangeView::Sight sight = view.sightOf(moved, margin);
+    if (sight == RangeView::Sight::kNoEvidence) continue;
     ++counts.tested;
-    counts.contradicted += moved.norm() < measured - margin;
+    counts.contradicted += sight == RangeView::Sight::kSeenThrough;
   }
 }
 

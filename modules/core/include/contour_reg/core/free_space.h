@@ -63,6 +63,11 @@ class RangeView {
   /// returns, or a negative value where it has no evidence (outside its view, in a gap).
   double rangeAt(double bearing) const;
 
+  /// What the view says of a point (sensor frame): no evidence at its bearing, or whether the
+  /// scan's beam there passed more than `margin` m beyond it (saw through it).
+  enum class Sight { kNoEvidence, kNotThrough, kSeenThrough };
+  Sight sightOf(const Eigen::Vector2d &point, double margin) const;
+
  private:
   std::vector<double> bearings_, ranges_;
   std::vector<double> spacing_;  // working memory of assign()
