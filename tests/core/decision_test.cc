@@ -59,6 +59,29 @@ TEST(Decision, FreeSpaceRefutesTheAliasOneDoorBack) {
   EXPECT_EQ(without.status, RegistrationStatus::kAmbiguous) << without.reason;
 }
 
+// The source scan is 5.1 m ahead along a corridor with a tooth every 1.4 m: the corners agree
+// on a motion three teeth back, which puts the source's end wall where the target saw 9 m of
+// free space. That contradiction sends the motion against the contours' own hypotheses.
+TEST(Decision, ACornerMotionTheFreeSpaceContradictsMeetsTheContoursHypotheses) {
+  const simulation::World corridor = test::sawtoothCorridor();
+  const Eigen::Isometry2d target = test::pose2d(0, 0, 0), source = test::pose2d(5.1, 0.1, 0);
+
+  const RegistrationResult r = registerPair(corridor, target, source);
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_LT(errorOf(r, target, source).head<2>().norm(), 0.05);
+
+  // Without the free-space term nothing tells the corners' motion, three teeth back, from the truth.
+  const RegistrationResult without = registerPair(corridor, target, source, withoutFreeSpace());
+  ASSERT_TRUE(without.converged) << without.reason;
+  EXPECT_NEAR(errorOf(without, target, source).head<2>().norm(), 4.2, 0.1);
+
+  // 5.7 m ahead, the contours' best rival fits as well as the corners' motion: no answer.
+  const Eigen::Isometry2d farther = test::pose2d(5.7, 0.1, 0);
+  const RegistrationResult tie = registerPair(corridor, target, farther);
+  EXPECT_FALSE(tie.converged);
+  EXPECT_EQ(tie.status, RegistrationStatus::kAmbiguous) << tie.reason;
+}
+
 TEST(Decision, PeopleWalkingThroughDoNotRefuteTheRightMotion) {
   const simulation::World room = simulation::makeFurnishedRoom();
   simulation::World with_people = room;  // two people in the source scan only

@@ -78,6 +78,19 @@ inline simulation::World corridorOfDoors() {
   return corridor;
 }
 
+/// A corridor 3 m wide closed at x = 9 m, its right wall a row of teeth 1.4 m apart (a wall
+/// of shallow bays, as in a convention centre): every tooth tip is a corner like the next.
+inline simulation::World sawtoothCorridor() {
+  simulation::World corridor;
+  corridor.addSegment({-15.0, 1.5}, {9.0, 1.5});
+  corridor.addSegment({9.0, 1.5}, {9.0, -1.5});
+  for (double x = -15.0; x < 9.0; x += 1.4) {
+    corridor.addSegment({x, -1.5}, {x + 1.0, -1.2});
+    corridor.addSegment({x + 1.0, -1.2}, {x + 1.4, -1.5});
+  }
+  return corridor;
+}
+
 inline LaserScan scanFrom(const simulation::World &world, const Eigen::Isometry2d &pose, double noise = 0.0,
                           unsigned seed = 42) {
   simulation::LidarModel model = simulation::LidarModel::hokuyoUtm30lx();

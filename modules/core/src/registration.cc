@@ -228,7 +228,8 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     result.transform = refined.transform;
     // The contours must confirm what the corners agree on; a motion they do not confirm goes
     // back to the guess, and the contours' own hypotheses decide.
-    const std::string against = decision::judgeCornerMotion(judged, corners, params, guess, buffers, scorer);
+    const std::string against =
+        decision::judgeCornerMotion(judged, corners, params, guess, result.candidates, buffers, scorer);
     if (!against.empty())
       return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                          "too few inliers: " + std::to_string(corners) + " special points" + against);

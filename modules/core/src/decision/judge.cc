@@ -4,6 +4,7 @@
 
 #include "contour_reg/core/transform_estimation.h"
 #include "generate.h"
+#include "refine.h"
 
 namespace contour_reg::decision {
 
@@ -50,6 +51,25 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const E
          scorer.score(from_guess) <= scorer.score(found.best) - kScoreTie;
 }
 
+// Whether the best stands against the contours' own hypotheses (contourHypotheses: the guess,
+// single corner pairs, contour directions): none that refines to a distinct motion scores
+// within the tie of it. Searched only for a best the free space contradicts by more than the
+// tie: a rival as well supported but not contradicted would then win outright, and a wrong
+// motion the corners agree on (one door off along a corridor) is contradicted most.
+bool standsAgainstContours(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
+                           const std::vector<Correspondence> &pairs, RegistrationBuffers &buffers, Scorer &scorer) {
+  const double best = scorer.score(found.best);
+  if (found.best.refined.overlap - best <= kScoreTie) return true;
+  const Eigen::Matrix3d chosen = found.best.refined.transform;
+  const RefinementParams wide = widened(params);
+  std::vector<RefinementStart> starts;
+  contourHypotheses(scorer.source(), scorer.target(), params, guess, pairs, wide, starts);
+  for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), starts, buffers))
+    if (motionDistance(chosen, rival.transform) > kDistinctMotions && scorer.score(rival) > best - kScoreTie)
+      return false;
+  return true;
+}
+
 }  // namespace
 
 Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Matrix3d *guess, Scorer &scorer) {
@@ -73,7 +93,8 @@ Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Mat
 }
 
 std::string judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
-                              const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, Scorer &scorer) {
+                              const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
+                              RegistrationBuffers &buffers, Scorer &scorer) {
   const RefinementResult &refined = found.best.refined;
   if (found.ambiguous) return ", but the contours fit a distinct motion of other corners as well";
   // Two corners need a large overlap, more a modest one.
@@ -89,6 +110,8 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
   if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
       !standsAgainstGuess(found, params, guess, buffers, scorer))
     return ", and the contours fit a distinct motion from the guess as well";
+  if (!standsAgainstContours(found, params, guess, pairs, buffers, scorer))
+    return ", but the other scan saw through part of it and the contours fit a distinct motion as well";
   return {};
 }
 

@@ -9,7 +9,9 @@
 ///   direction, both ways, it settles back or fits worse where it settles (a room passes; a
 ///   bare corridor, a circle seen from inside, a corridor only a short stub closes do not);
 /// - unrivalled: no distinct motion scores within the tie, among the refined candidates and,
-///   for a motion few corners decide, the contours' own answer from the guess.
+///   for a motion few corners decide, the contours' own answer from the guess; for a motion
+///   the free space contradicts by more than the tie, among all the contours' hypotheses
+///   (generate.h) too: a rival as well supported and not contradicted would win outright.
 /// Free-space evidence enters through the score: a rival that puts walls where the other scan
 /// looked through empty space scores lower and is no rival.
 
@@ -35,8 +37,11 @@ Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Mat
 
 /// The verdict on a motion that `corners` distinct inlier special points agree on: empty when
 /// the contours confirm it, otherwise what they found against it (to follow "N special points").
+/// `pairs` are the candidate pairs of special points, from which the contours' hypotheses are
+/// drawn when the free space contradicts the motion.
 std::string judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
-                              const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, Scorer &scorer);
+                              const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
+                              RegistrationBuffers &buffers, Scorer &scorer);
 
 /// The verdict on the contours' own best motion when the corners did not decide: converged,
 /// low overlap, unconstrained or ambiguous, with the reason in `why`.

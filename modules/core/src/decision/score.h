@@ -49,6 +49,9 @@ class Scorer {
   double score(const RefinementResult &refined) { return refined.overlap - contradiction(refined.transform); }
   double score(ScoredMotion &motion);
 
+  const ContourFeatures &source() const { return source_; }
+  const ContourFeatures &target() const { return target_; }
+
  private:
   const ContourFeatures &source_, &target_;
   const FreeSpaceParams &params_;

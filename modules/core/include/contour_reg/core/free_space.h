@@ -33,8 +33,8 @@ struct FreeSpaceParams {
   /// 1 degree moves a point 30 m away by 0.5 m), below the offset of a distinct motion.
   double margin = 0.5;
   /// m, contradicted stretches of contour shorter than this are not counted: a walking
-  /// person, a chair moved between the scans.
-  double min_run_length = 1.0;
+  /// person (about 0.5 m across at the height of a LIDAR), a chair moved between the scans.
+  double min_run_length = 0.5;
 
   bool validate(std::string *why = nullptr) const;
 };
