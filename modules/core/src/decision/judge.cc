@@ -60,12 +60,11 @@ bool standsAgainstContours(Judged &found, const RegistrationParams &params, cons
                            const std::vector<Correspondence> &pairs, RegistrationBuffers &buffers, Scorer &scorer) {
   const double best = scorer.score(found.best);
   if (found.best.refined.overlap - best <= kScoreTie) return true;
-  const Eigen::Matrix3d chosen = found.best.refined.transform;
   const RefinementParams wide = widened(params);
-  std::vector<RefinementStart> starts;
-  contourHypotheses(scorer.source(), scorer.target(), params, guess, pairs, wide, starts);
-  for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), starts, buffers))
-    if (motionDistance(chosen, rival.transform) > kDistinctMotions && scorer.score(rival) > best - kScoreTie)
+  contourHypotheses(scorer.source(), scorer.target(), params, guess, pairs, wide, buffers.starts);
+  for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), buffers.starts, buffers))
+    if (motionDistance(found.best.refined.transform, rival.transform) > kDistinctMotions &&
+        scorer.score(rival) > best - kScoreTie)
       return false;
   return true;
 }
