@@ -200,10 +200,18 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   const simulation::World corridor = corridorWithRecesses(0.25, 0.6, 4.0);
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8, 0.02);
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.8, 0.05, 2), 9, 0.02);
-  const RegistrationResult corners_alone = registerSeeded(source, target, withoutCornerChecks());
+  RegistrationParams unrefined = withoutCornerChecks();  // the corners' motion, unjudged
+  unrefined.refinement.enabled = false;
+  const RegistrationResult corners_alone = registerSeeded(source, target, unrefined);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
   ASSERT_EQ(corners_alone.inliers.size(), 3u);
   EXPECT_GT(std::abs(corners_alone.transform(0, 2) - 0.8), 0.5);  // confidently wrong
+
+  // The contours' hypotheses alone: the motion puts little of the contour on the target.
+  const RegistrationResult by_hypotheses = registerSeeded(source, target, withoutCornerChecks());
+  EXPECT_FALSE(by_hypotheses.converged) << by_hypotheses.transform;
+  EXPECT_NE(by_hypotheses.reason.find("3 special points, but they put only"), std::string::npos)
+      << by_hypotheses.reason;
 
   RegistrationParams probed = withoutCornerChecks();  // the probe alone
   probed.probe_max_inliers = 3;

@@ -13,6 +13,10 @@ namespace {
 // A probe has settled back when it ends within this fraction of the probe distance.
 constexpr double kSettledBack = 0.25;
 
+// A corner motion that puts less than this share of the source contour on the target must
+// stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
+constexpr double kMostOfTheContour = 0.5;
+
 // Whether the best is pinned along its weakest direction (RefinementResult::weakest_direction):
 // started `probe` m off along it, both ways, the refinement of the source's `samples` against
 // the `refiner`'s target must settle back on it, or at least score worse where it settles. A
@@ -53,13 +57,19 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const E
 
 // Whether the best stands against the contours' own hypotheses (contourHypotheses: the guess,
 // single corner pairs, contour directions): none that refines to a distinct motion scores
-// within the tie of it. Searched only for a best the free space contradicts by more than the
-// tie: a rival as well supported but not contradicted would then win outright, and a wrong
-// motion the corners agree on (one door off along a corridor) is contradicted most.
+// within the tie of it. Searched only for a best that leaves room for such a rival:
+// - one the free space contradicts by more than the tie: a rival as well supported but not
+//   contradicted would win outright, and a wrong motion the corners agree on (one door off
+//   along a corridor) is contradicted most;
+// - one that puts less than kMostOfTheContour of the source contour on the target: two
+//   distinct motions can each put most of a contour on the target only where the structure
+//   repeats along the motion between them, which the free space contradicts; below it, a few
+//   corners (a cupboard, the posts of a fence) may agree on a motion the rest of the scan
+//   does not share, and the walls' own motion can explain more.
 bool standsAgainstContours(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
                            const std::vector<Correspondence> &pairs, RegistrationBuffers &buffers, Scorer &scorer) {
   const double best = scorer.score(found.best);
-  if (found.best.refined.overlap - best <= kScoreTie) return true;
+  if (found.best.refined.overlap >= kMostOfTheContour && found.best.refined.overlap - best <= kScoreTie) return true;
   const RefinementParams wide = widened(params);
   contourHypotheses(scorer.source(), scorer.target(), params, guess, pairs, wide, buffers.starts);
   for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), buffers.starts, buffers))
@@ -110,7 +120,10 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
       !standsAgainstGuess(found, params, guess, buffers, scorer))
     return ", and the contours fit a distinct motion from the guess as well";
   if (!standsAgainstContours(found, params, guess, pairs, buffers, scorer))
-    return ", but the other scan saw through part of it and the contours fit a distinct motion as well";
+    return refined.overlap - scorer.score(found.best) > kScoreTie
+               ? ", but the other scan saw through part of it and the contours fit a distinct motion as well"
+               : ", but they put only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+                     " % of the contour on the target and the contours fit a distinct motion as well";
   return {};
 }
 
