@@ -40,23 +40,13 @@ Cloud::Ptr toCloud(const LaserScan &scan, bool finite_only) {
   return cloud;
 }
 
-std::size_t nearestScan(const io::ScanLog &log, double stamp) {
-  const auto &e = log.entries;
-  const auto it = std::lower_bound(e.begin(), e.end(), stamp,
-                                   [](const io::LogEntry &entry, double t) { return entry.scan.stamp < t; });
-  if (it == e.begin()) return 0;
-  if (it == e.end()) return e.size() - 1;
-  const std::size_t k = static_cast<std::size_t>(it - e.begin());
-  return std::abs(e[k].scan.stamp - stamp) < std::abs(e[k - 1].scan.stamp - stamp) ? k : k - 1;
-}
-
 std::vector<Pair> relationPairs(const std::string &log_path, const std::string &relations_path) {
   const io::ScanLog log = io::readLog(log_path);
   std::vector<Pair> pairs;
   for (const io::Relation &r : io::readRelations(relations_path)) {
     if (std::abs(r.t2 - r.t1) > 5.0) continue;
-    const LaserScan &target = log.entries[nearestScan(log, r.t1)].scan;
-    const LaserScan &source = log.entries[nearestScan(log, r.t2)].scan;
+    const LaserScan &target = log.entries[io::nearestEntry(log, r.t1)].scan;
+    const LaserScan &source = log.entries[io::nearestEntry(log, r.t2)].scan;
     pairs.push_back(
         {toCloud(target, false), toCloud(source, false), toCloud(target, true), toCloud(source, true), r.motion});
   }

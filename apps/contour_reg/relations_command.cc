@@ -39,14 +39,6 @@ struct RelationsOptions {
   MethodOptions method_options;
 };
 
-std::size_t nearestScan(const io::ScanLog &log, double stamp) {
-  auto it = std::lower_bound(log.entries.begin(), log.entries.end(), stamp,
-                             [](const io::LogEntry &e, double t) { return e.scan.stamp < t; });
-  std::size_t k = static_cast<std::size_t>(it - log.entries.begin());
-  if (k == log.entries.size() || (k > 0 && stamp - log.entries[k - 1].scan.stamp < it->scan.stamp - stamp)) --k;
-  return k;
-}
-
 // A scan pair to register and its reference motion (the second scan's pose in the first's frame).
 struct ScanPair {
   std::size_t first = 0, second = 0;
@@ -56,7 +48,8 @@ struct ScanPair {
 std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const RelationsOptions &options) {
   std::vector<ScanPair> pairs;
   for (const io::Relation &r : io::readRelations(options.relations))
-    if (std::abs(r.t2 - r.t1) <= options.max_dt) pairs.push_back({nearestScan(log, r.t1), nearestScan(log, r.t2), r});
+    if (std::abs(r.t2 - r.t1) <= options.max_dt)
+      pairs.push_back({io::nearestEntry(log, r.t1), io::nearestEntry(log, r.t2), r});
   return pairs;
 }
 

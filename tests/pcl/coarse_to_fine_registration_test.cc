@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <pcl/console/print.h>
 
-#include "clouds.h"
+#include "contour_reg/odometry/scan_matcher.h"
 #include "scenes.h"
 
 namespace contour_reg {
@@ -18,8 +18,9 @@ TEST(CoarseToFineRegistration, TheFineStageStartsFromTheCoarseAnswer) {
   const simulation::World world = simulation::makeFurnishedRoom();
   const Eigen::Isometry2d motion = test::pose2d(0.35, -0.15, 12);
   CoarseToFine registration;
-  registration.setInputTarget(test::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20), 0.01, 1)));
-  registration.setInputSource(test::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20) * motion, 0.01, 2)));
+  registration.setInputTarget(odometry::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20), 0.01, 1)));
+  registration.setInputSource(
+      odometry::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20) * motion, 0.01, 2)));
   Cloud aligned;
   registration.align(aligned);
   ASSERT_TRUE(registration.hasConverged());
@@ -41,8 +42,8 @@ TEST(CoarseToFineRegistration, UndecidedCornersLeaveTheAnswerToTheFineStageFromT
   simulation::World corridor;  // no corner, and the contours leave the axis free
   corridor.addSegment({-30, -1.2}, {30, -1.2});
   corridor.addSegment({-30, 1.3}, {30, 1.3});
-  const auto target = test::beamCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1));
-  const auto source = test::beamCloud(test::scanFrom(corridor, test::pose2d(0.1, 0.05, 1), 0.01, 2));
+  const auto target = odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1));
+  const auto source = odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0.1, 0.05, 1), 0.01, 2));
   CoarseToFine registration;
   registration.setInputTarget(target);
   registration.setInputSource(source);
@@ -65,8 +66,8 @@ TEST(CoarseToFineRegistration, AFineCorrectionBeyondTheLimitKeepsTheCoarseAnswer
   const simulation::World world = simulation::makeFurnishedRoom();
   CoarseToFine registration;
   registration.setMaxFineCorrection(0.0, 0.0);  // any move of the fine stage is too far
-  registration.setInputTarget(test::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20), 0.01, 1)));
-  registration.setInputSource(test::beamCloud(test::scanFrom(world, test::pose2d(0.7, -0.3, 25), 0.01, 2)));
+  registration.setInputTarget(odometry::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20), 0.01, 1)));
+  registration.setInputSource(odometry::beamCloud(test::scanFrom(world, test::pose2d(0.7, -0.3, 25), 0.01, 2)));
   Cloud aligned;
   registration.align(aligned);
   ASSERT_TRUE(registration.hasConverged());
@@ -78,8 +79,8 @@ TEST(CoarseToFineRegistration, AFineCorrectionBeyondTheLimitKeepsTheCoarseAnswer
 // setters are documented as having no effect.
 TEST(CoarseToFineRegistration, ItsOwnPclSettersHaveNoEffect) {
   const simulation::World world = simulation::makeFurnishedRoom();
-  const auto target = test::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20), 0.01, 1));
-  const auto source = test::beamCloud(test::scanFrom(world, test::pose2d(0.7, -0.3, 25), 0.01, 2));
+  const auto target = odometry::beamCloud(test::scanFrom(world, test::pose2d(0.5, -0.4, 20), 0.01, 1));
+  const auto source = odometry::beamCloud(test::scanFrom(world, test::pose2d(0.7, -0.3, 25), 0.01, 2));
   Cloud aligned;
   CoarseToFine plain, configured;
   configured.setMaximumIterations(1);

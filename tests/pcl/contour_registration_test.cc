@@ -13,9 +13,9 @@
 #include <pcl/registration/ndt_2d.h>
 #include <pcl/registration/transformation_estimation_2D.h>
 
-#include "clouds.h"
 #include "contour_reg/core/deskew.h"
 #include "contour_reg/core/transform_estimation.h"
+#include "contour_reg/odometry/scan_matcher.h"
 #include "scenes.h"
 
 namespace contour_reg {
@@ -38,8 +38,8 @@ struct ScanPair {
   ScanPair() {
     const simulation::World world = simulation::makeFurnishedRoom();
     const Eigen::Isometry2d base = test::pose2d(0.5, -0.4, 20);
-    target = test::beamCloud(test::scanFrom(world, base, 0.01, 1));
-    source = test::beamCloud(test::scanFrom(world, base * motion, 0.01, 2));
+    target = odometry::beamCloud(test::scanFrom(world, base, 0.01, 1));
+    source = odometry::beamCloud(test::scanFrom(world, base * motion, 0.01, 2));
   }
   double translationError(const Eigen::Matrix4f &t) const {
     return (t.block<2, 1>(0, 3).cast<double>() - motion.translation()).norm();
@@ -148,8 +148,8 @@ TEST(ContourRegistration, ASweepDeskewsScansTakenWhileMoving) {
   const Eigen::Isometry2d truth = motion(period);
 
   ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  registration.setInputTarget(test::beamCloud(target));
-  registration.setInputSource(test::beamCloud(source));
+  registration.setInputTarget(odometry::beamCloud(target));
+  registration.setInputSource(odometry::beamCloud(source));
   auto error = [&] {
     Cloud aligned;
     registration.align(aligned);
@@ -179,13 +179,13 @@ TEST(ContourRegistration, ASweepDeskewsScansTakenWhileMoving) {
 TEST(ContourRegistration, SwapReusesTheLastSourcesFeaturesAsTarget) {
   const simulation::World world = simulation::makeFurnishedRoom();
   ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  registration.setInputSource(test::beamCloud(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1)));
+  registration.setInputSource(odometry::beamCloud(test::scanFrom(world, test::pose2d(0, 0, 0), 0.01, 1)));
   std::uint64_t last_source_extraction = 0, last_extraction = 0;
   for (int k = 1; k <= 4; ++k) {
     SCOPED_TRACE(k);
     registration.swapSourceAndTarget();
     registration.setInputSource(
-        test::beamCloud(test::scanFrom(world, test::pose2d(0.2 * k, 0.05 * k, 3 * k), 0.01, 1 + k)));
+        odometry::beamCloud(test::scanFrom(world, test::pose2d(0.2 * k, 0.05 * k, 3 * k), 0.01, 1 + k)));
     Cloud aligned;
     registration.align(aligned);
     if (k > 1) {  // the first target had not been aligned as a source: this align() read it
@@ -293,16 +293,16 @@ TEST(ContourRegistration, CorridorReportsWhyItDidNotConverge) {
   corridor.addSegment({-30, -1.2}, {30, -1.2});
   corridor.addSegment({-30, 1.3}, {30, 1.3});
   ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  registration.setInputTarget(test::beamCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1)));
-  registration.setInputSource(test::beamCloud(test::scanFrom(corridor, test::pose2d(0.4, 0, 2), 0.01, 2)));
+  registration.setInputTarget(odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1)));
+  registration.setInputSource(odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0.4, 0, 2), 0.01, 2)));
   Cloud aligned;
   registration.align(aligned);
   EXPECT_FALSE(registration.hasConverged());
   EXPECT_NE(registration.getFailureReason().find("special points"), std::string::npos);
   // PCL's ICP, on the same pair, reports convergence although the corridor fixes nothing along its axis.
   pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
-  icp.setInputSource(finite(test::beamCloud(test::scanFrom(corridor, test::pose2d(0.4, 0, 2), 0.01, 2))));
-  icp.setInputTarget(finite(test::beamCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1))));
+  icp.setInputSource(finite(odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0.4, 0, 2), 0.01, 2))));
+  icp.setInputTarget(finite(odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1))));
   icp.align(aligned);
   EXPECT_TRUE(icp.hasConverged());
   EXPECT_GT(std::abs(icp.getFinalTransformation()(0, 3) - 0.4f), 0.1f);

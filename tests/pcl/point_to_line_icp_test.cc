@@ -7,8 +7,8 @@
 #include <pcl/registration/icp.h>
 #include <pcl/registration/transformation_estimation_2D.h>
 
-#include "clouds.h"
 #include "contour_reg/core/contour.h"
+#include "contour_reg/odometry/scan_matcher.h"
 #include "contour_reg/transformation_estimation_point_to_line_2d.h"
 #include "scenes.h"
 
@@ -65,8 +65,8 @@ TEST(PointToLineIcp, RecoversASimulatedMotionInAFurnishedRoom) {
   const simulation::World world = simulation::makeFurnishedRoom();
   const Eigen::Isometry2d start = test::pose2d(0.5, -0.4, 20), motion = test::pose2d(0.2, -0.1, 6);
   PlIcp registration;
-  registration.setInputTarget(test::beamCloud(test::scanFrom(world, start, 0.01, 1)));
-  registration.setInputSource(test::beamCloud(test::scanFrom(world, start * motion, 0.01, 2)));
+  registration.setInputTarget(odometry::beamCloud(test::scanFrom(world, start, 0.01, 1)));
+  registration.setInputSource(odometry::beamCloud(test::scanFrom(world, start * motion, 0.01, 2)));
   Cloud aligned;
   registration.align(aligned);
   ASSERT_TRUE(registration.hasConverged());
@@ -84,8 +84,8 @@ TEST(PointToLineIcp, ConvergesFromFartherThanPointToPointIcpInTheSameRoom) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const simulation::World world = simulation::makeFurnishedRoom();
   const Eigen::Isometry2d start = test::pose2d(0.5, -0.4, 20), motion = test::pose2d(0.4, 0.2, 10);
-  const auto target = test::beamCloud(test::scanFrom(world, start, 0.01, 1));
-  const auto source = test::beamCloud(test::scanFrom(world, start * motion, 0.01, 2));
+  const auto target = odometry::beamCloud(test::scanFrom(world, start, 0.01, 1));
+  const auto source = odometry::beamCloud(test::scanFrom(world, start * motion, 0.01, 2));
   auto error = [&](pcl::Registration<pcl::PointXYZ, pcl::PointXYZ> &registration) {
     registration.setMaxCorrespondenceDistance(1.0);
     registration.setMaximumIterations(50);

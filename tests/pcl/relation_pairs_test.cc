@@ -1,28 +1,19 @@
 // Pairs of the real relation logs in ../shared/datasets that test one verdict of the judge,
 // registered from a zero guess as a PCL user would. Skipped when the logs are absent.
-#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "clouds.h"
 #include "contour_reg/contour_registration.h"
-#include "contour_reg/core/contour.h"
 #include "contour_reg/io/read_log.h"
+#include "contour_reg/odometry/scan_matcher.h"
 #include "temp_dir.h"
 
 namespace contour_reg {
 namespace {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
-
-const LaserScan &scanAt(const io::ScanLog &log, double stamp) {
-  const auto nearest = std::min_element(log.entries.begin(), log.entries.end(), [&](const auto &a, const auto &b) {
-    return std::abs(a.scan.stamp - stamp) < std::abs(b.scan.stamp - stamp);
-  });
-  return nearest->scan;
-}
 
 // mit-csail, relation 1134864970.88318 -> 1134864971.52318 (scans 1598 and 1601): the robot
 // turns 31.5 deg and moves 0.67 m. Three corners agree on a motion 90 deg off, under which
@@ -33,8 +24,8 @@ TEST(RelationPairs, AFewCornersThatExplainLittleOfTheScanMeetTheContoursHypothes
   if (path.empty()) GTEST_SKIP() << "../shared/datasets/mit-csail is absent";
   const io::ScanLog log = io::readLog(path);
   ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  registration.setInputTarget(test::beamCloud(scanAt(log, 1134864970.88318)));
-  registration.setInputSource(test::beamCloud(scanAt(log, 1134864971.52318)));
+  registration.setInputTarget(odometry::beamCloud(log.entries[io::nearestEntry(log, 1134864970.88318)].scan));
+  registration.setInputSource(odometry::beamCloud(log.entries[io::nearestEntry(log, 1134864971.52318)].scan));
   Cloud aligned;
   registration.align(aligned);
 

@@ -1,5 +1,6 @@
 #include "contour_reg/io/read_log.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "contour_reg/io/carmen.h"
@@ -38,6 +39,14 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
         entry.scan.time_increment = beamInterval(options.scan_period, entry.scan.angle_increment);
   if (options.laser_pose) log.laser_pose = options.laser_pose;
   return log;
+}
+
+std::size_t nearestEntry(const ScanLog &log, double stamp) {
+  const auto it = std::lower_bound(log.entries.begin(), log.entries.end(), stamp,
+                                   [](const LogEntry &e, double t) { return e.scan.stamp < t; });
+  std::size_t k = static_cast<std::size_t>(it - log.entries.begin());
+  if (k == log.entries.size() || (k > 0 && stamp - log.entries[k - 1].scan.stamp < it->scan.stamp - stamp)) --k;
+  return k;
 }
 
 }  // namespace contour_reg::io

@@ -55,6 +55,11 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const E
          scorer.score(from_guess) <= scorer.score(found.best) - kScoreTie;
 }
 
+// Whether the free space contradicts the best by more than the tie (its score that far below its overlap).
+bool contradicted(Judged &found, Scorer &scorer) {
+  return found.best.refined.overlap - scorer.score(found.best) > kScoreTie;
+}
+
 // Whether the best stands against the contours' own hypotheses (contourHypotheses: the guess,
 // single corner pairs, contour directions): none that refines to a distinct motion scores
 // within the tie of it. Searched only for a best that leaves room for such a rival:
@@ -68,8 +73,8 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const E
 //   does not share, and the walls' own motion can explain more.
 bool standsAgainstContours(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
                            const std::vector<Correspondence> &pairs, RegistrationBuffers &buffers, Scorer &scorer) {
+  if (found.best.refined.overlap >= kMostOfTheContour && !contradicted(found, scorer)) return true;
   const double best = scorer.score(found.best);
-  if (found.best.refined.overlap >= kMostOfTheContour && found.best.refined.overlap - best <= kScoreTie) return true;
   const RefinementParams wide = widened(params);
   contourHypotheses(scorer.source(), scorer.target(), params, guess, pairs, wide, buffers.starts);
   for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), buffers.starts, buffers))
@@ -120,7 +125,7 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
       !standsAgainstGuess(found, params, guess, buffers, scorer))
     return ", and the contours fit a distinct motion from the guess as well";
   if (!standsAgainstContours(found, params, guess, pairs, buffers, scorer))
-    return refined.overlap - scorer.score(found.best) > kScoreTie
+    return contradicted(found, scorer)
                ? ", but the other scan saw through part of it and the contours fit a distinct motion as well"
                : ", but they put only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
                      " % of the contour on the target and the contours fit a distinct motion as well";

@@ -30,4 +30,8 @@ struct LogReadOptions {
 /// ReadError naming the file.
 ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
 
+/// The index of the entry whose scan stamp is nearest `stamp` (s); the later one on a tie.
+/// `log` must have an entry.
+std::size_t nearestEntry(const ScanLog &log, double stamp);
+
 }  // namespace contour_reg::io
