@@ -113,6 +113,30 @@ TEST(Decision, ARivalThatScoresAsWellIsAmbiguous) {
   EXPECT_LT(errorOf(decided, target, less).norm(), 0.01);
 }
 
+// The result names the best motion the judge weighed and did not return, for pictures and
+// diagnosis: the rival of a converged answer, the motion of a declined one.
+TEST(Decision, TheResultNamesTheBestRejectedMotion) {
+  const simulation::World corridor = test::corridorOfDoors();
+  const Eigen::Isometry2d target = test::pose2d(0, 0, 0), source = test::pose2d(3.0, 0.05, 1);
+  const RegistrationResult right = registerPair(corridor, target, source);
+  ASSERT_TRUE(right.converged) << right.reason;
+  ASSERT_TRUE(right.rejected.has_value());
+  // One door back (no motion): the contours fit it, the free space refutes it.
+  EXPECT_LT((right.rejected->transform.topRightCorner<2, 1>()).norm(), 0.1);
+  EXPECT_GT(right.rejected->overlap, right.overlap - 0.05);
+  EXPECT_GT(right.rejected->overlap - right.rejected->score, 0.03);
+  EXPECT_LT(right.rejected->score, right.overlap - 0.05);
+
+  simulation::World square;
+  square.addPolygon({{-3, -3}, {3, -3}, {3, 3}, {-3, 3}});
+  const RegistrationResult tie = registerPair(square, target, test::pose2d(0, 0, 45));
+  ASSERT_FALSE(tie.converged);
+  ASSERT_TRUE(tie.rejected.has_value());
+  // The declined motion is one of the two turns that fit: 45 deg, or -45 deg.
+  EXPECT_NEAR(std::abs(yawOf(tie.rejected->transform)), M_PI / 4, 0.02);
+  EXPECT_GT(tie.rejected->overlap, 0.8);
+}
+
 // The square turned 30 deg: two corners, the refinement pairs 89 % of the contour.
 TEST(Decision, TwoCornersStandOnlyWithALargeOverlap) {
   simulation::World square;

@@ -1,3 +1,5 @@
+#include <random>
+
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
@@ -97,20 +99,49 @@ TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
   EXPECT_EQ(countColour(sides(cv::Rect(0, band, 1000, 500)), Palette::warning()), 0);
 }
 
-// A corridor with a door recess every 3 m, closed 9 m ahead: one door back, the walls still
-// fit, but the end wall lands where the other scan looked through.
+// Two scans of a corridor with a door recess every 3 m, closed 9 m ahead: the target at the
+// origin, the source at `source_pose`; their features.
+struct CorridorPair {
+  explicit CorridorPair(const Eigen::Isometry2d &source_pose)
+      : target(test::scanFrom(test::corridorOfDoors(), test::pose2d(0, 0, 0), 0.01, 1)),
+        source(test::scanFrom(test::corridorOfDoors(), source_pose, 0.01, 2)),
+        ft(extractContourFeatures(target, ContourParams{})),
+        fs(extractContourFeatures(source, ContourParams{})) {}
+  LaserScan target, source;
+  ContourFeatures ft, fs;
+};
+
+// One door back, the walls still fit, but the end wall lands where the other scan looked through.
 TEST(DebugImages, PairImageShowsTheContourAMotionPutsInFreeSpace) {
-  const simulation::World corridor = test::corridorOfDoors();
-  const LaserScan target = test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1),
-                  source = test::scanFrom(corridor, test::pose2d(0.5, 0.0, 0), 0.01, 2);
-  const ContourFeatures ft = extractContourFeatures(target, ContourParams{}),
-                        fs = extractContourFeatures(source, ContourParams{});
+  const CorridorPair pair(test::pose2d(0.5, 0.0, 0));
+  const auto &[target, source, ft, fs] = pair;
   RegistrationResult right, alias;
   right.converged = alias.converged = true;
   right.transform(0, 2) = 0.5;
   alias.transform(0, 2) = 0.5 - 3.0;
   EXPECT_EQ(countColour(drawPair(target, source, ft, fs, right, "right", 1200), Palette::freeSpace()), 0);
   EXPECT_GT(countColour(drawPair(target, source, ft, fs, alias, "one door back", 1200), Palette::freeSpace()), 50);
+}
+
+// Registered, a pair 3 m apart converges on the truth; the third panel shows the rival the
+// judge weighed, one door back, with its end wall in the free space.
+TEST(DebugImages, PairImageShowsTheBestRejectedMotion) {
+  const CorridorPair pair(test::pose2d(3.0, 0.05, 1));
+  const auto &[target, source, ft, fs] = pair;
+  std::mt19937 rng(3);
+  RegistrationResult result = registerContours(fs, ft, RegistrationParams{}, rng);
+  ASSERT_TRUE(result.converged) << result.reason;
+  ASSERT_TRUE(result.rejected.has_value());
+  const cv::Mat image = drawPair(target, source, ft, fs, result, "pair", 1200);
+  ASSERT_EQ(image.cols, 1800);
+  const int band = image.rows - 600;  // the words above the panels
+  ASSERT_GT(band, 0);
+  const cv::Mat middle = image(cv::Rect(600, band, 600, 600)), third = image(cv::Rect(1200, band, 600, 600));
+  EXPECT_EQ(countColour(middle, Palette::freeSpace()), 0);
+  EXPECT_GT(countColour(third, Palette::freeSpace()), 50);
+  EXPECT_GT(countColour(third, Palette::source()), 300);
+  result.rejected.reset();
+  EXPECT_EQ(drawPair(target, source, ft, fs, result, "pair", 1200).cols, 1200);
 }
 
 TEST(DebugImages, TrajectoriesAreDrawnOverGroundTruth) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "decision/generate.h"
 #include "decision/judge.h"
@@ -40,6 +42,16 @@ std::vector<Correspondence> gateByGuess(const std::vector<Correspondence> &pairs
     kept.push_back(c);
   }
   return kept;
+}
+
+// `motion` as RegistrationResult::rejected reports it.
+RejectedMotion rejected(decision::ScoredMotion &motion, decision::Scorer &scorer) {
+  return {motion.refined.transform, motion.refined.overlap, scorer.score(motion)};
+}
+
+// Keeps `motion` in result.rejected when it scores higher than the motion there.
+void offerRejected(RegistrationResult &result, const RejectedMotion &motion) {
+  if (!result.rejected || motion.score > result.rejected->score) result.rejected = motion;
 }
 
 // Largest distance between two of the points.
@@ -230,9 +242,15 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     // back to the guess, and the contours' own hypotheses decide.
     const std::string against =
         decision::judgeCornerMotion(judged, corners, params, guess, result.candidates, buffers, scorer);
-    if (!against.empty())
+    if (!against.empty()) {
+      // Scored with the contours' hypotheses that follow (tryLocalFallback), when it needs it.
+      const decision::ScoredMotion &declined = judged.best;
+      result.rejected = RejectedMotion{refined.transform, refined.overlap,
+                                       declined.scored ? declined.score : std::numeric_limits<double>::quiet_NaN()};
       return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                          "too few inliers: " + std::to_string(corners) + " special points" + against);
+    }
+    if (judged.rival) result.rejected = rejected(*judged.rival, scorer);
     if (result.degenerate) result.pinned = decision::pinnedPart(refined, params.refinement);
   }
   result.converged = true;
@@ -251,14 +269,24 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
       decision::chooseBest(decision::refineHypotheses(source, target, starts, buffers), guess, scorer);
   std::string why;
   const RegistrationStatus verdict = decision::judgeContourMotion(judged, params, buffers, scorer, why);
+  // The corner motion declined before, if any, is weighed with what the contours found.
+  std::optional<RejectedMotion> declined = std::move(result.rejected);
+  result.rejected.reset();
+  if (declined && std::isnan(declined->score))
+    declined->score = declined->overlap - scorer.contradiction(declined->transform);
   if (verdict != RegistrationStatus::kConverged) {
     if (verdict == RegistrationStatus::kUnconstrained)
       result.pinned = decision::pinnedPart(judged.best.refined, params.refinement);
     result.status = verdict;
     result.reason += "; " + why;
+    offerRejected(result, rejected(judged.best, scorer));
+    if (declined) offerRejected(result, *declined);
     return;
   }
   const RefinementResult &refined = judged.best.refined;
+  if (judged.rival) offerRejected(result, rejected(*judged.rival, scorer));
+  if (declined && decision::motionDistance(declined->transform, refined.transform) > decision::kDistinctMotions)
+    offerRejected(result, *declined);
   result.transform = refined.transform;
   result.contour_rmse = refined.rmse;
   result.overlap = refined.overlap;

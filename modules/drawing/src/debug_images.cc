@@ -227,19 +227,43 @@ void wrapped(cv::Mat &image, std::string reason, cv::Point at, std::size_t colum
   }
 }
 
+// `panel`: the target and the source moved onto it by `motion`, and in magenta the contour
+// that motion puts in the other scan's free space (free_space.h): source contour where the
+// target looked through, target contour where the source did, both in the target frame. The
+// amount is written in `band`.
+void drawMotion(cv::Mat panel, cv::Mat band, const View &view, const std::vector<Eigen::Vector2d> &target_points,
+                const LaserScan &source, const ContourFeatures &target_features, const ContourFeatures &source_features,
+                const Eigen::Matrix3d &motion, const std::string &moved) {
+  drawPoints(panel, view, target_points, Palette::target(), 2);
+  drawPoints(panel, view, finitePoints(source, motion), Palette::source(), 1);
+  std::vector<Eigen::Vector2d> contradicted;
+  const FreeSpaceEvidence evidence_against =
+      mutualFreeSpaceEvidence(source_features, RangeView(source_features), target_features, RangeView(target_features),
+                              motion, FreeSpaceParams{}, &contradicted);
+  drawPoints(panel, view, contradicted, Palette::freeSpace(), 3);
+  decorate(panel, view);
+  char evidence[160];
+  std::snprintf(evidence, sizeof evidence, "magenta: %.1f m of contour (%.0f %%) in the other scan's free space",
+                evidence_against.contradicted_length, 100.0 * evidence_against.fraction());
+  text(band, evidence, {15, 122}, 0.5, contradicted.empty() ? kBlack : Palette::freeSpace());
+  legend(panel, {{"target scan", Palette::target()}, {moved, Palette::source()}}, {15, panel.rows - 50});
+}
+
 cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const ContourFeatures &target_features,
                  const ContourFeatures &source_features, const RegistrationResult &result, const std::string &title,
                  int width) {
-  // A band on top for the words, two panels below for the data.
+  // A band on top for the words, two panels below for the data, a third for the best
+  // motion the judge rejected when it weighed one.
   const int panel = width / 2, height = panel, band = 150;
-  cv::Mat image(band + height, width, CV_8UC3, kWhite);
+  const int panels = result.rejected ? 3 : 2;
+  cv::Mat image(band + height, panel * panels, CV_8UC3, kWhite);
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
   const auto target_points = finitePoints(target, identity), source_points = finitePoints(source, identity);
   std::vector<Eigen::Vector2d> all = target_points;
   all.insert(all.end(), source_points.begin(), source_points.end());
   const View view = View::fit(all, panel, height);
   cv::Mat top_left = image(cv::Rect(0, 0, panel, band)), top_right = image(cv::Rect(panel, 0, panel, band));
-  cv::line(image, {0, band}, {width, band}, kBlack, 1);
+  cv::line(image, {0, band}, {image.cols, band}, kBlack, 1);
 
   // Left: both scans in their own sensor frames, pairs between their special points.
   cv::Mat left = image(cv::Rect(0, band, panel, height));
@@ -278,21 +302,11 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
   text(top_left, "(grey lines: candidate pairs, no motion found)", {300, 102}, 0.45);
   text(top_left, "triangle: the sensor; bar: scale", {300, 124}, 0.45);
 
-  // Right: the source moved by the result.
-  cv::Mat right = image(cv::Rect(panel, band, panel, height));
-  cv::line(image, {panel, 0}, {panel, band + height}, kBlack, 1);
-  const auto moved = finitePoints(source, result.transform);
+  // Middle: the source moved by the result.
   const View overlay = View::fit(target_points, panel, height);
-  drawPoints(right, overlay, target_points, Palette::target(), 2);
-  drawPoints(right, overlay, moved, Palette::source(), 1);
-  // What the motion puts in free space: source contour where the target looked through, and
-  // target contour where the source did (free_space.h), both in the target frame.
-  std::vector<Eigen::Vector2d> contradicted;
-  const FreeSpaceEvidence evidence_against =
-      mutualFreeSpaceEvidence(source_features, RangeView(source_features), target_features, RangeView(target_features),
-                              result.transform, FreeSpaceParams{}, &contradicted);
-  drawPoints(right, overlay, contradicted, Palette::freeSpace(), 3);
-  decorate(right, overlay);
+  cv::line(image, {panel, 0}, {panel, band + height}, kBlack, 1);
+  drawMotion(image(cv::Rect(panel, band, panel, height)), top_right, overlay, target_points, source, target_features,
+             source_features, result.transform, "source moved by the result");
   const io::Pose2D pose = io::toPose(result.transform);
   char line[200];
   if (result.converged) {
@@ -303,12 +317,23 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
     text(top_right, std::string("NOT CONVERGED (") + toString(result.status) + "):", {15, 28}, 0.6, Palette::warning());
     wrapped(top_right, result.reason, {15, 52}, 75, 3, Palette::warning());
   }
-  char evidence[160];
-  std::snprintf(evidence, sizeof evidence, "magenta: %.1f m of contour (%.0f %%) in the other scan's free space",
-                evidence_against.contradicted_length, 100.0 * evidence_against.fraction());
-  text(top_right, evidence, {15, 122}, 0.5, contradicted.empty() ? kBlack : Palette::freeSpace());
-  legend(right, {{"target scan", Palette::target()}, {"source moved by the result", Palette::source()}},
-         {15, height - 50});
+
+  // Right: the best motion the judge weighed and did not return, on the same scale.
+  if (result.rejected) {
+    const RejectedMotion &rejected = *result.rejected;
+    cv::Mat top = image(cv::Rect(2 * panel, 0, panel, band));
+    cv::line(image, {2 * panel, 0}, {2 * panel, band + height}, kBlack, 1);
+    drawMotion(image(cv::Rect(2 * panel, band, panel, height)), top, overlay, target_points, source, target_features,
+               source_features, rejected.transform, "source moved by the rejected motion");
+    const io::Pose2D other = io::toPose(rejected.transform);
+    text(top, result.converged ? "best distinct rival the judge weighed:" : "best motion the judge declined:", {15, 28},
+         0.6);
+    std::snprintf(line, sizeof line, "x %.3f m, y %.3f m, yaw %.2f deg", other.x, other.y, other.yaw * 180 / M_PI);
+    text(top, line, {15, 54}, 0.55);
+    std::snprintf(line, sizeof line, "overlap %.0f %%, score %.2f (overlap less the share in free space)",
+                  100.0 * rejected.overlap, rejected.score);
+    text(top, line, {15, 80}, 0.5);
+  }
   return image;
 }
 

@@ -38,7 +38,10 @@ bool settlesBack(Judged &found, double probe, const RefinementParams &params, co
     const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
                                         std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
                             .norm();
-    if (left > kSettledBack * probe && scorer.score(r) > scorer.score(found.best) - kScoreTie) return false;
+    if (left <= kSettledBack * probe) continue;
+    const double score = scorer.score(r);
+    found.consider(r, score);
+    if (score > scorer.score(found.best) - kScoreTie) return false;
   }
   return true;
 }
@@ -51,8 +54,10 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const E
                         RegistrationBuffers &buffers, Scorer &scorer) {
   const RefinementResult from_guess =
       buffers.refiner.refine(buffers.samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params));
-  return motionDistance(found.best.refined.transform, from_guess.transform) <= kDistinctMotions ||
-         scorer.score(from_guess) <= scorer.score(found.best) - kScoreTie;
+  if (motionDistance(found.best.refined.transform, from_guess.transform) <= kDistinctMotions) return true;
+  const double score = scorer.score(from_guess);
+  found.consider(from_guess, score);
+  return score <= scorer.score(found.best) - kScoreTie;
 }
 
 // Whether the free space contradicts the best by more than the tie (its score that far below its overlap).
@@ -77,17 +82,28 @@ bool standsAgainstContours(Judged &found, const RegistrationParams &params, cons
   const double best = scorer.score(found.best);
   const RefinementParams wide = widened(params);
   contourHypotheses(scorer.source(), scorer.target(), params, guess, pairs, wide, buffers.starts);
-  for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), buffers.starts, buffers))
-    if (motionDistance(found.best.refined.transform, rival.transform) > kDistinctMotions &&
-        scorer.score(rival) > best - kScoreTie)
-      return false;
+  for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), buffers.starts, buffers)) {
+    if (motionDistance(found.best.refined.transform, rival.transform) <= kDistinctMotions) continue;
+    const double score = scorer.score(rival);
+    found.consider(rival, score);
+    if (score > best - kScoreTie) return false;
+  }
   return true;
 }
 
 }  // namespace
 
+void Judged::consider(const RefinementResult &motion, double score) {
+  if (motionDistance(motion.transform, best.refined.transform) <= kDistinctMotions) return;
+  if (!rival || score > rival->score) rival = ScoredMotion{motion, true, score};
+}
+
 Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Matrix3d *guess, Scorer &scorer) {
-  if (refined.size() == 1) return Judged{{refined.front()}};
+  Judged result;
+  if (refined.size() == 1) {
+    result.best.refined = refined.front();
+    return result;
+  }
   const Eigen::Matrix3d prior = guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity();
   std::vector<double> scores;
   for (const RefinementResult &r : refined) scores.push_back(scorer.score(r));
@@ -98,11 +114,13 @@ Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Mat
                          motionDistance(refined[k].transform, prior) < motionDistance(refined[best].transform, prior));
     if (better) best = k;
   }
-  Judged result{{refined[best], true, scores[best]}};
-  for (std::size_t k = 0; k < refined.size(); ++k)
+  result.best = ScoredMotion{refined[best], true, scores[best]};
+  for (std::size_t k = 0; k < refined.size(); ++k) {
+    result.consider(refined[k], scores[k]);
     if (scores[k] > scores[best] - kScoreTie &&
         motionDistance(refined[k].transform, refined[best].transform) > kDistinctMotions)
       result.ambiguous = true;
+  }
   return result;
 }
 

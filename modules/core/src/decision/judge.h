@@ -30,6 +30,12 @@ namespace contour_reg::decision {
 struct Judged {
   ScoredMotion best;
   bool ambiguous = false;
+  /// The best-scoring motion distinct from `best` (motionDistance > kDistinctMotions) that the
+  /// judge scored: among the candidates and in its checks (probes, the guess, the contours'
+  /// hypotheses). None when it scored no such motion.
+  std::optional<ScoredMotion> rival;
+  /// Keeps `motion`, scored `score`, as the rival when it is distinct from the best and scores higher.
+  void consider(const RefinementResult &motion, double score);
 };
 
 /// Picks the best of `refined` (not empty). A single candidate is not scored: nothing to compare.

@@ -103,6 +103,15 @@ enum class RegistrationStatus {
   kAmbiguous,              ///< on the contours, a distinct motion scores as well (repeated structure, symmetry)
 };
 
+/// A motion the judge weighed and did not return, for pictures and diagnosis.
+struct RejectedMotion {
+  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
+  double overlap = 0.0;                                     ///< fraction of source contour the refinement paired
+  /// The decision's score (decision/score.h): overlap less the share of both contours the
+  /// motion puts in the other scan's free space.
+  double score = 0.0;
+};
+
 /// A short name for a status ("converged", "too_few_special_points", ...).
 const char *toString(RegistrationStatus status);
 /// Writes toString(status).
@@ -147,6 +156,10 @@ struct RegistrationResult {
   /// Set when the contours' best motion leaves one direction free: an unconstrained verdict,
   /// or a converged estimate marked degenerate. `transform` stays the guess for the former.
   std::optional<PinnedMotion> pinned;
+  /// The best-scoring motion the judge weighed and did not return: with a converged result,
+  /// the best distinct rival it was compared with; otherwise the motion it declined. Not set
+  /// when the judge compared no motions.
+  std::optional<RejectedMotion> rejected;
 };
 
 /// What registration keeps between calls: the target's refinement index, rebuilt only when

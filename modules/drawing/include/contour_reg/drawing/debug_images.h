@@ -60,9 +60,12 @@ cv::Mat drawScan(const LaserScan &scan, const ContourFeatures &features, const C
 cv::Mat drawDeskew(const LaserScan &scan, const SweepMotion &motion, const std::string &title, int width = 1200);
 
 /// One pair: left, both scans in their own frames with special points, candidate pairs
-/// (grey), RANSAC inliers (green) and outliers (red); right, the source moved onto the
+/// (grey), RANSAC inliers (green) and outliers (red); middle, the source moved onto the
 /// target by the result (or the failure reason when it did not converge), and in magenta the
-/// contour that motion puts in the other scan's free space (free_space.h).
+/// contour that motion puts in the other scan's free space (free_space.h). When the result
+/// has a rejected motion (RegistrationResult::rejected: the best distinct rival of a converged
+/// result, the declined motion of another), a third panel shows it the same way, with its
+/// overlap and score. `width` is that of the first two panels; the third adds half of it.
 cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const ContourFeatures &target_features,
                  const ContourFeatures &source_features, const RegistrationResult &result, const std::string &title,
                  int width = 1600);
