@@ -135,6 +135,17 @@ TEST(Decision, TheResultNamesTheBestRejectedMotion) {
   // The declined motion is one of the two turns that fit: 45 deg, or -45 deg.
   EXPECT_NEAR(std::abs(yawOf(tie.rejected->transform)), M_PI / 4, 0.02);
   EXPECT_GT(tie.rejected->overlap, 0.8);
+
+  // A corner motion declined for its overlap alone, with the contours' hypotheses off, is
+  // scored all the same.
+  const simulation::World room = simulation::makeFurnishedRoom();
+  RegistrationParams strict = withoutContourHypotheses();
+  strict.corner_min_overlap = strict.two_inlier_min_overlap = 0.999;
+  const RegistrationResult declined = registerPair(room, test::pose2d(0, 0, 10), test::pose2d(0.3, 0.1, 12), strict);
+  ASSERT_FALSE(declined.converged);
+  ASSERT_TRUE(declined.rejected.has_value());
+  EXPECT_GT(declined.rejected->overlap, 0.5);
+  EXPECT_NEAR(declined.rejected->score, declined.rejected->overlap, 0.05);  // the right motion: no free space
 }
 
 // The square turned 30 deg: two corners, the refinement pairs 89 % of the contour.

@@ -323,6 +323,10 @@ void registerContours(const ContourFeatures &source, const ContourFeatures &targ
   if (!result.converged && isUndecided(result.status) && params.local_fallback_min_overlap > 0.0 &&
       params.refinement.enabled && !source.contours.empty() && !target.contours.empty())
     tryLocalFallback(source, target, params, guess, buffers, result);
+  else if (result.rejected && std::isnan(result.rejected->score))  // a declined corner motion, not scored yet
+    result.rejected->score =
+        result.rejected->overlap -
+        decision::Scorer(source, target, params.free_space, buffers).contradiction(result.rejected->transform);
 }
 
 }  // namespace contour_reg
