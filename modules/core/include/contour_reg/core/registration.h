@@ -158,7 +158,8 @@ struct RegistrationResult {
   std::optional<PinnedMotion> pinned;
   /// The best-scoring motion the judge weighed and did not return: with a converged result,
   /// the best distinct rival it was compared with; otherwise the motion it declined. Not set
-  /// when the judge compared no motions.
+  /// when no refinement ran (refinement off, a scan without contours, or the corners without
+  /// a motion and the local fallback off) or a converged motion met no distinct rival.
   std::optional<RejectedMotion> rejected;
 };
 
