@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include "decision/generate.h"
@@ -243,10 +242,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     const std::string against =
         decision::judgeCornerMotion(judged, corners, params, guess, result.candidates, buffers, scorer);
     if (!against.empty()) {
-      // Scored with the contours' hypotheses that follow (tryLocalFallback), when it needs it.
-      const decision::ScoredMotion &declined = judged.best;
-      result.rejected = RejectedMotion{refined.transform, refined.overlap,
-                                       declined.scored ? declined.score : std::numeric_limits<double>::quiet_NaN()};
+      result.rejected = rejected(judged.best, scorer);
       return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
                          "too few inliers: " + std::to_string(corners) + " special points" + against);
     }
@@ -272,8 +268,6 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
   // The corner motion declined before, if any, is weighed with what the contours found.
   std::optional<RejectedMotion> declined = std::move(result.rejected);
   result.rejected.reset();
-  if (declined && std::isnan(declined->score))
-    declined->score = declined->overlap - scorer.contradiction(declined->transform);
   if (verdict != RegistrationStatus::kConverged) {
     if (verdict == RegistrationStatus::kUnconstrained)
       result.pinned = decision::pinnedPart(judged.best.refined, params.refinement);
@@ -323,10 +317,6 @@ void registerContours(const ContourFeatures &source, const ContourFeatures &targ
   if (!result.converged && isUndecided(result.status) && params.local_fallback_min_overlap > 0.0 &&
       params.refinement.enabled && !source.contours.empty() && !target.contours.empty())
     tryLocalFallback(source, target, params, guess, buffers, result);
-  else if (result.rejected && std::isnan(result.rejected->score))  // a declined corner motion, not scored yet
-    result.rejected->score =
-        result.rejected->overlap -
-        decision::Scorer(source, target, params.free_space, buffers).contradiction(result.rejected->transform);
 }
 
 }  // namespace contour_reg
