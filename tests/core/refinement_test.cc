@@ -46,19 +46,45 @@ TEST(Refinement, SparseBeamsOnDistantWallsPairAtTheTrueMotion) {
   EXPECT_NEAR(yawOf(r.transform), 2.0 * M_PI / 180.0, 0.2 * M_PI / 180.0);
 }
 
-TEST(Refinement, PullsANearbyStartOntoTheTrueMotion) {
+// Two scans of the furnished room, the source moved by `motion` from the target.
+struct RoomPair {
   const test::RoomWithBoxes room;
   const Eigen::Isometry2d motion = test::pose2d(0.4, -0.2, 5);
   const ContourFeatures target =
       extractContourFeatures(test::scanFrom(room.world, test::pose2d(0, 0, 0), 0.01, 3), ContourParams{});
   const ContourFeatures source = extractContourFeatures(test::scanFrom(room.world, motion, 0.01, 4), ContourParams{});
+};
+
+TEST(Refinement, PullsANearbyStartOntoTheTrueMotion) {
+  const RoomPair pair;
   const RefinementResult r =
-      refineOnContours(source, target, matrixOf(test::pose2d(0.5, -0.05, 7)), RefinementParams{});
+      refineOnContours(pair.source, pair.target, matrixOf(test::pose2d(0.5, -0.05, 7)), RefinementParams{});
   EXPECT_GT(r.overlap, 0.9);
   EXPECT_FALSE(r.degenerate);
   EXPECT_NEAR(r.transform(0, 2), 0.4, 0.01);
   EXPECT_NEAR(r.transform(1, 2), -0.2, 0.01);
   EXPECT_NEAR(yawOf(r.transform), 5.0 * M_PI / 180.0, 0.2 * M_PI / 180.0);
+}
+
+// A caller that only asks whether a start leads back to a known motion stops the refinement
+// once it is there: fewer iterations, ending near that motion; a motion never reached changes
+// nothing.
+TEST(Refinement, StopsOnceItHasArrivedNearAGivenMotion) {
+  const RoomPair pair;
+  const ContourRefiner refiner(pair.target, RefinementParams{});
+  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementParams{}.sample_step);
+  const Eigen::Matrix3d start = matrixOf(test::pose2d(0.55, -0.05, 8));
+  const RefinementResult full = refiner.refine(samples, start, RefinementParams{});
+  const auto near_truth = [&](const Eigen::Matrix3d &m) {
+    return (m.topRightCorner<2, 1>() - matrixOf(pair.motion).topRightCorner<2, 1>()).norm() < 0.03;
+  };
+  const RefinementResult stopped = refiner.refine(samples, start, RefinementParams{}, near_truth);
+  EXPECT_LT(stopped.iterations, full.iterations);
+  EXPECT_TRUE(near_truth(stopped.transform));
+  const RefinementResult never =
+      refiner.refine(samples, start, RefinementParams{}, [](const Eigen::Matrix3d &) { return false; });
+  EXPECT_EQ(never.iterations, full.iterations);
+  EXPECT_TRUE(never.transform.isApprox(full.transform));
 }
 
 }  // namespace

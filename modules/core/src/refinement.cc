@@ -181,7 +181,8 @@ RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eig
 }
 
 RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &initial,
-                                        const RefinementParams &params) const {
+                                        const RefinementParams &params,
+                                        const std::function<bool(const Eigen::Matrix3d &)> &arrived) const {
   const BearingIndex &index = index_->bearing;
   RefinementResult result;
   result.transform = initial;
@@ -244,6 +245,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     y += step(1);
     yaw += step(2);
     distance = std::max(params.min_distance, distance * 0.7);
+    if (arrived && arrived(rigidTransform(x, y, yaw))) break;
     if (step.head<2>().norm() < params.stop_translation && std::abs(step(2)) < params.stop_rotation &&
         distance <= params.min_distance)
       break;

@@ -30,14 +30,18 @@ bool settlesBack(Judged &found, double probe, const RefinementParams &params, co
   RefinementParams from_probe = params;
   from_probe.max_distance = params.max_distance + probe;
   const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
+  // How far from the best a motion is, rotation in metres of arc.
+  const auto from_best = [&](const Eigen::Matrix3d &m) {
+    return Eigen::Vector3d(m(0, 2) - x, m(1, 2) - y, std::remainder(yawOf(m) - yaw, 2.0 * M_PI) * best.rms_range)
+        .norm();
+  };
   for (const double sign : {1.0, -1.0}) {
     const Eigen::Vector3d off = sign * probe * best.weakest_direction;
+    // A probe that has come back halfway into the settled radius has settled back: stop there.
     const RefinementResult r =
-        refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe);
-    // How far from the best the probe settled, rotation in metres of arc.
-    const double left = Eigen::Vector3d(r.transform(0, 2) - x, r.transform(1, 2) - y,
-                                        std::remainder(yawOf(r.transform) - yaw, 2.0 * M_PI) * best.rms_range)
-                            .norm();
+        refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe,
+                       [&](const Eigen::Matrix3d &m) { return from_best(m) <= 0.5 * kSettledBack * probe; });
+    const double left = from_best(r.transform);
     if (left <= kSettledBack * probe) continue;
     const double score = scorer.score(r);
     found.consider(r, score);
@@ -52,9 +56,13 @@ bool settlesBack(Judged &found, double probe, const RefinementParams &params, co
 // where the contours fit about as well as at the true motion.
 bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
                         RegistrationBuffers &buffers, Scorer &scorer) {
+  // A refinement from the guess that has come a quarter of the distinct-motion distance near
+  // the best agrees with it: stop there.
+  const Eigen::Matrix3d &best = found.best.refined.transform;
   const RefinementResult from_guess =
-      buffers.refiner.refine(buffers.samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params));
-  if (motionDistance(found.best.refined.transform, from_guess.transform) <= kDistinctMotions) return true;
+      buffers.refiner.refine(buffers.samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params),
+                             [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; });
+  if (motionDistance(best, from_guess.transform) <= kDistinctMotions) return true;
   const double score = scorer.score(from_guess);
   found.consider(from_guess, score);
   return score <= scorer.score(found.best) - kScoreTie;

@@ -13,6 +13,7 @@
 /// information matrix also gives the covariance of the estimate, to which a yaw term that
 /// grows with the turn is added (RefinementParams::turn_noise).
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -111,9 +112,13 @@ class ContourRefiner {
   RefinementResult refine(const ContourFeatures &source, const Eigen::Matrix3d &initial,
                           const RefinementParams &params) const;
   /// The same from the source's samples (contourSamples with params.sample_step), for several
-  /// starting motions of one source.
+  /// starting motions of one source. When `arrived` is given, the refinement stops as soon as
+  /// it holds for the motion after an iteration: for a caller that asks only whether a start
+  /// leads back to a motion it knows, the iterations after the refinement has come close to it
+  /// cannot change that answer, only polish it.
   RefinementResult refine(const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &initial,
-                          const RefinementParams &params) const;
+                          const RefinementParams &params,
+                          const std::function<bool(const Eigen::Matrix3d &)> &arrived = {}) const;
 
  private:
   struct Index;
