@@ -106,11 +106,15 @@ void BM_RansacAndRefinement(benchmark::State &state) {  // stages D-F + refineme
   params.refinement.enabled = state.range(1) != 0;
   std::mt19937 rng;
   const std::size_t allocations = allocationCount();
+  RegistrationResult result;
   for (auto _ : state) {
     rng.seed(42);
-    benchmark::DoNotOptimize(registerContours(b, a, params, rng));
+    result = registerContours(b, a, params, rng);
+    benchmark::DoNotOptimize(result);
   }
   state.counters["allocations"] = double(allocationCount() - allocations) / double(state.iterations());
+  state.counters["inliers"] = double(result.inliers.size());
+  state.counters["from_local_fallback"] = result.from_local_fallback;
 }
 
 void BM_DirectionHypotheses(benchmark::State &state) {  // the fallback's corner-free motion hypotheses
