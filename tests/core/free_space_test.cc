@@ -56,6 +56,21 @@ TEST(FreeSpace, APersonWalkingThroughDoesNotRefuteTheRightMotion) {
   EXPECT_EQ(evidenceAt(source, target, truth).contradicted_length, 0.0);
 }
 
+// The range view finds the returns that bracket a point by approximateAtan2, the index and the
+// query alike: that needs its stated bound and, for the order of bearings, monotonicity.
+TEST(FreeSpace, ApproximateBearingIsWithinItsBoundAndKeepsBearingOrder) {
+  double worst = 0.0, last = -M_PI;
+  for (int k = 1; k < 200000; ++k) {
+    const double bearing = -M_PI + 2.0 * M_PI * k / 200000.0;
+    const double approximate = approximateAtan2(std::sin(bearing), std::cos(bearing));
+    worst = std::max(worst, std::abs(approximate - bearing));
+    EXPECT_GE(approximate, last) << "at " << bearing;
+    last = approximate;
+  }
+  EXPECT_LT(worst, 2.1e-4);
+  EXPECT_GT(worst, 1.9e-4);  // the bound is tight: no tighter one may be promised
+}
+
 TEST(FreeSpace, BearingsWithoutReturnsGiveNoEvidence) {
   simulation::World wall;  // one wall ahead: no return at most bearings
   wall.addSegment({3.0, -1.0}, {3.0, 1.0});

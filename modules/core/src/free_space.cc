@@ -33,7 +33,7 @@ FreeSpaceEvidence &FreeSpaceEvidence::operator+=(const FreeSpaceEvidence &other)
 }
 
 void RangeView::add(const Complex &point) {
-  bearings_.push_back(std::arg(point));
+  bearings_.push_back(approximateAtan2(point.imag(), point.real()));
   ranges_.push_back(std::abs(point));
 }
 
@@ -93,7 +93,7 @@ double RangeView::rangeAt(double bearing) const {
 }
 
 RangeView::Sight RangeView::sightOf(const Eigen::Vector2d &point, double margin) const {
-  const double measured = rangeAt(std::atan2(point.y(), point.x()));
+  const double measured = rangeAt(approximateAtan2(point.y(), point.x()));
   if (measured < 0.0) return Sight::kNoEvidence;
   return point.norm() < measured - margin ? Sight::kSeenThrough : Sight::kNotThrough;
 }
