@@ -25,6 +25,8 @@ namespace {
 
 // A converged estimate this far from the reference is a gross error (m, deg).
 constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;
+// Two estimates within half the recovery tolerance of each other agree (m, deg).
+constexpr double kAgreeMetres = 0.05, kAgreeDegrees = 1.0;
 
 struct RelationsOptions {
   std::string input, relations;
@@ -44,6 +46,59 @@ struct ScanPair {
   std::size_t first = 0, second = 0;
   io::Relation reference;
 };
+
+// One method's answer to one pair.
+struct Answer {
+  bool converged = false, wrong = false;
+  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();
+};
+
+// Whether two methods find a motion in independent ways. The methods that start with the
+// contour stage share its answer (contour+icp refines contour's); the others (ICP, point-to-line
+// ICP, GICP, NDT) each descend from the guess into its basin, and from one guess two of them
+// easily land in the same wrong one. A contour-based method and a local one are independent.
+bool independent(const std::string &a, const std::string &b) {
+  const auto contour_based = [](const std::string &name) { return name.rfind("contour", 0) == 0; };
+  return contour_based(a) != contour_based(b);
+}
+
+// For each method's converged-but-wrong answers: how many an independent method, registering
+// the same pair from the same zero guess, converged next to. Two independent methods that agree
+// against the reference point at an error of the reference.
+std::vector<std::string> agreementLines(const std::vector<std::string> &methods,
+                                        const std::vector<std::vector<Answer>> &answers) {
+  std::vector<std::string> lines;
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    if (std::none_of(methods.begin(), methods.end(), [&](const std::string &o) { return independent(methods[m], o); }))
+      continue;  // no witness
+    std::size_t wrong = 0, agreed = 0;
+    std::map<std::string, int> by;
+    for (std::size_t k = 0; k < answers[m].size(); ++k) {
+      const Answer &a = answers[m][k];
+      if (!a.wrong) continue;
+      ++wrong;
+      bool any = false;
+      for (std::size_t o = 0; o < methods.size(); ++o) {
+        const Answer &b = answers[o][k];
+        if (!independent(methods[m], methods[o]) || !b.converged) continue;
+        const double metres = (a.transform.topRightCorner<2, 1>() - b.transform.topRightCorner<2, 1>()).norm();
+        const double degrees = std::abs(std::remainder(yawOf(a.transform) - yawOf(b.transform), 2 * M_PI)) * 180 / M_PI;
+        if (metres > kAgreeMetres || degrees > kAgreeDegrees) continue;
+        any = true;
+        ++by[methods[o]];
+      }
+      agreed += any;
+    }
+    std::string names;
+    for (const auto &[name, count] : by) names += (names.empty() ? "" : ", ") + name + " " + std::to_string(count);
+    lines.push_back(methods[m] + ": " + std::to_string(wrong) +
+                    " converged but wrong; an independent method converged within " +
+                    std::to_string(static_cast<int>(100 * kAgreeMetres)) + " cm and " +
+                    std::to_string(static_cast<int>(kAgreeDegrees)) + " deg of " + std::to_string(agreed) + " of them" +
+                    (names.empty() ? "" : " (" + names + ")"));
+  }
+  return lines;
+}
 
 std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const RelationsOptions &options) {
   std::vector<ScanPair> pairs;
@@ -104,7 +159,9 @@ int runRelations(const RelationsOptions &options) {
   std::fflush(stdout);
   std::vector<std::string> failures;     // printed after the table
   std::vector<std::string> gross_lines;  // likewise
+  std::vector<std::vector<Answer>> answers;
   for (const std::string &name : options.methods) {
+    std::vector<Answer> &answered = answers.emplace_back();
     auto matcher = odometry::makeScanMatcher(name, options.method_options.settings());
     std::map<std::string, int> reasons;
     ProgressBar progress(name);
@@ -133,6 +190,7 @@ int runRelations(const RelationsOptions &options) {
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
       wrong += match.converged && !ok;
+      answered.push_back({match.converged, match.converged && !ok, t});
       const bool gross_error = match.converged && (et > kGrossMetres || er > kGrossDegrees);
       // Each motion's evidence in the scans themselves, in the laser's frame like the scans:
       // for the CSV and for the gross errors.
@@ -182,6 +240,7 @@ int runRelations(const RelationsOptions &options) {
   if (csv) std::fclose(csv);
   std::printf("\n");
   for (const std::string &line : gross_lines) std::printf("%s\n", line.c_str());
+  for (const std::string &line : agreementLines(options.methods, answers)) std::printf("%s\n", line.c_str());
   for (const std::string &line : failures) std::fprintf(stderr, "%s\n", line.c_str());
   return 0;
 }

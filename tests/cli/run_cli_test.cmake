@@ -113,6 +113,15 @@ file(WRITE ${WORK_DIR}/straight.relations "0.0 0.5 0.25 0 0 0 0 0\n0.5 1.0 1.5 0
 expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour
            --pairs-csv ${WORK_DIR}/straight.csv)
 expect_match("${LAST_OUT}" "contour: 1 gross error\\(s\\) [^\n]*, 1 with a reference the scans contradict and an estimate they do not")
+if(LAST_OUT MATCHES "converged but wrong;")
+  message(FATAL_ERROR "relations counts agreement with no independent method run:\n${LAST_OUT}")
+endif()
+# ... and point-to-line ICP, from the same zero guess, agrees with the contour estimate against
+# that reference. contour+icp is no witness for contour (it starts from its estimate), nor ICP
+# for point-to-line ICP (both descend from the same guess).
+expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour contour+icp icp icp-pl)
+expect_match("${LAST_OUT}" "contour: 1 converged but wrong; an independent method converged within 5 cm and 1 deg of 1 of them \\(icp 1, icp-pl 1\\)")
+expect_match("${LAST_OUT}" "icp-pl: 1 converged but wrong; [^\n]* of 1 of them \\(contour 1, contour\\+icp 1\\)")
 file(STRINGS ${WORK_DIR}/straight.csv rows REGEX "^contour,")
 foreach(row IN LISTS rows)
   string(REPLACE "," ";" fields "${row}")
