@@ -25,8 +25,6 @@ namespace {
 
 // A converged estimate this far from the reference is a gross error (m, deg).
 constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;
-// Two estimates within half the recovery tolerance of each other agree (m, deg).
-constexpr double kAgreeMetres = 0.05, kAgreeDegrees = 1.0;
 
 struct RelationsOptions {
   std::string input, relations;
@@ -47,6 +45,15 @@ struct ScanPair {
   io::Relation reference;
 };
 
+// How far apart two motions are: translation (m) and rotation (deg).
+struct Apart {
+  double metres = 0.0, degrees = 0.0;
+};
+Apart apart(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
+  return {(a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm(),
+          std::abs(std::remainder(yawOf(a) - yawOf(b), 2 * M_PI)) * 180 / M_PI};
+}
+
 // One method's answer to one pair.
 struct Answer {
   bool converged = false, wrong = false;
@@ -63,10 +70,10 @@ bool independent(const std::string &a, const std::string &b) {
 }
 
 // For each method's converged-but-wrong answers: how many an independent method, registering
-// the same pair from the same zero guess, converged next to. Two independent methods that agree
-// against the reference point at an error of the reference.
+// the same pair from the same zero guess, converged within `agree` of. Two independent methods
+// that agree against the reference point at an error of the reference.
 std::vector<std::string> agreementLines(const std::vector<std::string> &methods,
-                                        const std::vector<std::vector<Answer>> &answers) {
+                                        const std::vector<std::vector<Answer>> &answers, const Apart &agree) {
   std::vector<std::string> lines;
   for (std::size_t m = 0; m < methods.size(); ++m) {
     if (std::none_of(methods.begin(), methods.end(), [&](const std::string &o) { return independent(methods[m], o); }))
@@ -81,9 +88,8 @@ std::vector<std::string> agreementLines(const std::vector<std::string> &methods,
       for (std::size_t o = 0; o < methods.size(); ++o) {
         const Answer &b = answers[o][k];
         if (!independent(methods[m], methods[o]) || !b.converged) continue;
-        const double metres = (a.transform.topRightCorner<2, 1>() - b.transform.topRightCorner<2, 1>()).norm();
-        const double degrees = std::abs(std::remainder(yawOf(a.transform) - yawOf(b.transform), 2 * M_PI)) * 180 / M_PI;
-        if (metres > kAgreeMetres || degrees > kAgreeDegrees) continue;
+        const Apart d = apart(a.transform, b.transform);
+        if (d.metres > agree.metres || d.degrees > agree.degrees) continue;
         any = true;
         ++by[methods[o]];
       }
@@ -93,9 +99,9 @@ std::vector<std::string> agreementLines(const std::vector<std::string> &methods,
     for (const auto &[name, count] : by) names += (names.empty() ? "" : ", ") + name + " " + std::to_string(count);
     lines.push_back(methods[m] + ": " + std::to_string(wrong) +
                     " converged but wrong; an independent method converged within " +
-                    std::to_string(static_cast<int>(100 * kAgreeMetres)) + " cm and " +
-                    std::to_string(static_cast<int>(kAgreeDegrees)) + " deg of " + std::to_string(agreed) + " of them" +
-                    (names.empty() ? "" : " (" + names + ")"));
+                    std::to_string(static_cast<int>(std::lround(100 * agree.metres))) + " cm and " +
+                    std::to_string(static_cast<int>(std::lround(agree.degrees))) + " deg of " + std::to_string(agreed) +
+                    " of them" + (names.empty() ? "" : " (" + names + ")"));
   }
   return lines;
 }
@@ -183,9 +189,8 @@ int runRelations(const RelationsOptions &options) {
       }
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
-      const double et = std::hypot(t(0, 2) - r.motion.x, t(1, 2) - r.motion.y);
       const double yaw = yawOf(t);
-      const double er = std::abs(std::remainder(yaw - r.motion.yaw, 2 * M_PI)) * 180 / M_PI;
+      const auto [et, er] = apart(t, io::toMatrix(r.motion));
       const bool ok = et <= options.tolerance && er <= options.tolerance_deg;
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
@@ -240,7 +245,10 @@ int runRelations(const RelationsOptions &options) {
   if (csv) std::fclose(csv);
   std::printf("\n");
   for (const std::string &line : gross_lines) std::printf("%s\n", line.c_str());
-  for (const std::string &line : agreementLines(options.methods, answers)) std::printf("%s\n", line.c_str());
+  // Two estimates within half the recovery tolerance of each other agree.
+  for (const std::string &line :
+       agreementLines(options.methods, answers, {options.tolerance / 2, options.tolerance_deg / 2}))
+    std::printf("%s\n", line.c_str());
   for (const std::string &line : failures) std::fprintf(stderr, "%s\n", line.c_str());
   return 0;
 }
