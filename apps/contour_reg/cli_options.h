@@ -161,6 +161,15 @@ inline void addDeskewOption(CLI::App &command, bool &deskew) {
                    "the log has it (on by default; docs/algorithm.md)");
 }
 
+/// --local-map: match against a local map of the last N keyframes (odometry.h), 0: off.
+inline void addLocalMapOption(CLI::App &command, std::size_t &keyframes) {
+  command
+      .add_option("--local-map", keyframes,
+                  "Match against a local map of the last N keyframes, not the previous scan (0-100, 0: off)")
+      ->capture_default_str()
+      ->check(inRange(0, 100));
+}
+
 /// --guess: where each registration's initial guess comes from.
 inline void addGuessOption(CLI::App &command, std::string &guess) {
   command.add_option("--guess", guess, "Initial guess: zero, odom (wheel odometry), velocity")

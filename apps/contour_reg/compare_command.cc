@@ -327,11 +327,7 @@ void addCompareCommand(CLI::App &app) {
   addGuessOption(*command, options->guess);
   addFrameOption(*command, options->frame);
   command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
-  command
-      ->add_option("--local-map", options->local_map,
-                   "Match against a local map of the last N keyframes, not the previous scan (0-100, 0: off)")
-      ->capture_default_str()
-      ->check(inRange(0, 100));
+  addLocalMapOption(*command, options->local_map);
   addDeskewOption(*command, options->deskew);
   addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");

@@ -109,11 +109,7 @@ void addOdometryCommand(CLI::App &app) {
   addFrameOption(*command, options->frame);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
   command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
-  command
-      ->add_option("--local-map", options->local_map,
-                   "Match against a local map of the last N keyframes, not the previous scan (0-100, 0: off)")
-      ->capture_default_str()
-      ->check(inRange(0, 100));
+  addLocalMapOption(*command, options->local_map);
   addDeskewOption(*command, options->deskew);
   addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
   command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
