@@ -106,6 +106,15 @@ std::vector<std::string> agreementLines(const std::vector<std::string> &methods,
   return lines;
 }
 
+// The CSV's declined motion (x m, y m, yaw rad), empty fields when there is none.
+std::string declinedFields(const odometry::MatchResult &match) {
+  if (!match.declined) return ",,";
+  const Eigen::Matrix3d &d = *match.declined;
+  char text[96];
+  std::snprintf(text, sizeof text, "%.4f,%.4f,%.5f", d(0, 2), d(1, 2), yawOf(d));
+  return text;
+}
+
 std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const RelationsOptions &options) {
   std::vector<ScanPair> pairs;
   for (const io::Relation &r : io::readRelations(options.relations))
@@ -152,7 +161,7 @@ int runRelations(const RelationsOptions &options) {
     std::fprintf(csv,
                  "method,first,second,t1_s,t2_s,ref_x_m,ref_y_m,ref_yaw_rad,est_x_m,est_y_m,est_yaw_rad,converged,"
                  "recovered,error_m,error_deg,ms,status,reason,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,"
-                 "ref_free_space,est_free_space\n");
+                 "ref_free_space,est_free_space,declined_x_m,declined_y_m,declined_yaw_rad\n");
   }
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
@@ -166,10 +175,14 @@ int runRelations(const RelationsOptions &options) {
   std::vector<std::string> failures;     // printed after the table
   std::vector<std::string> gross_lines;  // likewise
   std::vector<std::vector<Answer>> answers;
+  const auto within = [&](const Apart &d) {
+    return d.metres <= options.tolerance && d.degrees <= options.tolerance_deg;
+  };
   for (const std::string &name : options.methods) {
     std::vector<Answer> &answered = answers.emplace_back();
     auto matcher = odometry::makeScanMatcher(name, options.method_options.settings());
     std::map<std::string, int> reasons;
+    std::map<std::string, int> declined_right;  // per failure: the motion declined was within tolerance
     ProgressBar progress(name);
     std::size_t recovered = 0, converged = 0, wrong = 0, gross = 0, gross_against_reference = 0;
     double error_sum = 0.0;
@@ -186,14 +199,18 @@ int runRelations(const RelationsOptions &options) {
         const io::Pose2D laser_motion = io::toPose(laser_transform);
         match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
         match.transform = io::toMatrix(io::robotMotion(laser_motion, *log.laser_pose));
+        if (match.declined)
+          match.declined = io::toMatrix(io::robotMotion(io::toPose(*match.declined), *log.laser_pose));
       }
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
       const double yaw = yawOf(t);
       const auto [et, er] = apart(t, io::toMatrix(r.motion));
-      const bool ok = et <= options.tolerance && er <= options.tolerance_deg;
+      const bool ok = within({et, er});
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
+      if (!match.converged && match.declined)
+        declined_right[match.status] += within(apart(*match.declined, io::toMatrix(r.motion)));
       wrong += match.converged && !ok;
       answered.push_back({match.converged, match.converged && !ok, t});
       const bool gross_error = match.converged && (et > kGrossMetres || er > kGrossDegrees);
@@ -216,11 +233,11 @@ int runRelations(const RelationsOptions &options) {
         const Eigen::Matrix3d &c = match.covariance;
         std::fprintf(csv,
                      "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\","
-                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f\n",
+                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f,%s\n",
                      name.c_str(), pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2),
                      t(1, 2), yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er, match.milliseconds,
                      match.converged ? "converged" : match.status.c_str(), match.reason.c_str(), c(0, 0), c(0, 1),
-                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space);
+                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space, declinedFields(match).c_str());
       }
       if (match.converged && ok) {
         ++recovered;
@@ -239,7 +256,10 @@ int runRelations(const RelationsOptions &options) {
                           " with a reference the scans contradict and an estimate they do not (returns in the other "
                           "scan's free space; --pairs-csv: ref_free_space, est_free_space)");
     for (const auto &[reason, count] : reasons)
-      failures.push_back(name + " failed: " + reason + ": " + std::to_string(count));
+      failures.push_back(name + " failed: " + reason + ": " + std::to_string(count) +
+                         (declined_right.count(reason) ? "; the motion it declined was within the tolerance on " +
+                                                             std::to_string(declined_right[reason])
+                                                       : ""));
     std::fflush(stdout);
   }
   if (csv) std::fclose(csv);

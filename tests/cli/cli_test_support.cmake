@@ -1,4 +1,5 @@
 # What both CLI test scripts share: the bundled log, a clean work folder, and the checks.
+cmake_policy(SET CMP0007 NEW)  # lists keep empty elements: CSV rows split on commas keep their columns
 set(LOG ${SOURCE_DIR}/data/office/L-hokuyo-2hz.clf)
 set(GT ${SOURCE_DIR}/data/office/L-hokuyo-2hz.gt.tum)
 file(REMOVE_RECURSE ${WORK_DIR})

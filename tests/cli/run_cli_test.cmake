@@ -135,6 +135,23 @@ foreach(row IN LISTS rows)
   endif()
 endforeach()
 
+# relations reports, for each kind of decline, on how many pairs the motion the method declined
+# was right. Without special points (threshold 0.99) every pair goes to the contours' own
+# hypotheses, and an overlap of 100 % is more than any pair gives: both pairs decline the motion
+# they found, the true 0.25 m ahead, right against the first relation and not the second.
+expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour --threshold 0.99
+           --local-fallback 1 --pairs-csv ${WORK_DIR}/declined.csv)
+expect_match("${LAST_ERR}" "contour failed: low_overlap: 2; the motion it declined was within the tolerance on 1")
+file(STRINGS ${WORK_DIR}/declined.csv rows REGEX "^contour,")
+foreach(row IN LISTS rows)
+  if(NOT row MATCHES ",low_overlap,.*,(-?[0-9.]+),(-?[0-9.]+),(-?[0-9.]+)$")
+    message(FATAL_ERROR "relations: no declined motion in ${row}")
+  endif()
+  if(CMAKE_MATCH_1 LESS 0.2 OR CMAKE_MATCH_1 GREATER 0.3)
+    message(FATAL_ERROR "relations: declined motion ${CMAKE_MATCH_1} m ahead, not 0.25, in ${row}")
+  endif()
+endforeach()
+
 # simulate on a map image, and a path that fits nowhere.
 file(WRITE ${WORK_DIR}/paths.txt "# name x y ...\nshort 1 1 3 1\n")
 expect_run(0 simulate --map office --paths-file ${WORK_DIR}/paths.txt --path short --out ${WORK_DIR}/short.clf)

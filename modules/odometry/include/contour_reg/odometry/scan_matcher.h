@@ -42,6 +42,9 @@ struct MatchResult {
   std::size_t inliers = 0;  ///< contour methods: the special-point pairs the motion rests on (0 otherwise)
   /// Contour methods: what the scans pin when they leave one direction free (RegistrationResult::pinned).
   std::optional<PinnedMotion> pinned;
+  /// Contour methods, not converged: the best motion the judge weighed and declined
+  /// (RegistrationResult::rejected); none when it weighed none (too few special points, say).
+  std::optional<Eigen::Matrix3d> declined;
 };
 
 /// Settings of the methods that are worth changing from the command line.
