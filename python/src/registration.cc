@@ -65,6 +65,13 @@ void bindRegistration(py::module_ &m) {
       .def_property_readonly(
           "covariance", [](const odometry::MatchResult &r) { return matrixArray(r.covariance); },
           "3 x 3 covariance of (x, y, yaw), m^2 and rad^2; zero when the method gives none")
+      .def_property_readonly(
+          "declined",
+          [](const odometry::MatchResult &r) -> py::object {
+            return r.declined ? py::object(matrixArray(*r.declined)) : py::object(py::none());
+          },
+          "contour methods, not converged: the 3 x 3 transform of the best motion weighed and declined; "
+          "None when none was weighed")
       .def_readonly("inliers", &odometry::MatchResult::inliers,
                     "contour methods: the special-point pairs the motion rests on")
       .def_readonly("milliseconds", &odometry::MatchResult::milliseconds, "wall time of the registration")

@@ -39,6 +39,19 @@ def test_contour_recovers_simulated_motion(s_run):
         assert np.all(np.linalg.eigvalsh(result.covariance) > 0)
 
 
+def test_a_declined_registration_gives_the_motion_it_declined(s_run):
+    # No special points (threshold 0.99) and all of the contour demanded on the target: the
+    # contours' own best motion is found and declined for low overlap.
+    truth = true_motion(s_run, 0, 2)
+    result = cr.register(s_run.log[2], s_run.log[0], threshold=0.99, local_fallback=1.0)
+    assert not result.converged and result.status == "low_overlap", result
+    d = result.declined
+    error_m, error_rad = pose_error((d[0, 2], d[1, 2], np.arctan2(d[1, 0], d[0, 0])), truth)
+    assert error_m < 0.03 and error_rad < np.radians(0.5), (result.declined, truth)
+    np.testing.assert_array_equal(result.transform, np.eye(3))
+    assert cr.register(s_run.log[2], s_run.log[0]).declined is None  # converged: nothing declined
+
+
 def test_icp_from_the_true_motion_stays_there(s_run):
     guess = cr.pose_matrix(true_motion(s_run, 0, 1))
     result = cr.register(s_run.log[1], s_run.log[0], method="icp", guess=guess)
