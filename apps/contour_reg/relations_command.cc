@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include <pcl/console/print.h>
@@ -33,6 +34,8 @@ struct RelationsOptions {
   std::size_t limit = 0;
   std::string pairs_csv;         // one row per relation and method, when set
   std::size_t log_pose_gap = 0;  // > 0: pairs k, k + gap referenced by the log's own poses
+  std::string ground_truth;      // set: pairs k, k + gt_gap referenced by this TUM trajectory
+  std::size_t gt_gap = 1;
   std::string frame = "robot";
   bool deskew = true;
   io::LogReadOptions read;
@@ -123,16 +126,49 @@ std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const Relations
   return pairs;
 }
 
+// Scan k and scan k + gap for every k where `poses` (one per log entry) has both poses.
+std::vector<ScanPair> pairsFromPoses(const io::ScanLog &log, const std::vector<std::optional<io::Pose2D>> &poses,
+                                     std::size_t gap) {
+  std::vector<ScanPair> pairs;
+  for (std::size_t k = 0; k + gap < log.entries.size(); ++k) {
+    const std::optional<io::Pose2D> &a = poses[k], &b = poses[k + gap];
+    if (a && b)
+      pairs.push_back({k, k + gap, {log.entries[k].scan.stamp, log.entries[k + gap].scan.stamp, io::between(*a, *b)}});
+  }
+  return pairs;
+}
+
 // Scan k and scan k + gap, referenced by the poses the log itself carries (in the GMapping-
 // corrected Radish logs, the corrected pose; in a raw log, wheel odometry).
 std::vector<ScanPair> pairsFromLogPoses(const io::ScanLog &log, std::size_t gap) {
-  std::vector<ScanPair> pairs;
-  for (std::size_t k = 0; k + gap < log.entries.size(); ++k) {
-    const io::LogEntry &a = log.entries[k], &b = log.entries[k + gap];
-    if (!a.odometry || !b.odometry) continue;
-    pairs.push_back({k, k + gap, {a.scan.stamp, b.scan.stamp, io::between(*a.odometry, *b.odometry)}});
+  std::vector<std::optional<io::Pose2D>> poses;
+  for (const io::LogEntry &entry : log.entries) poses.push_back(entry.odometry);
+  return pairsFromPoses(log, poses, gap);
+}
+
+// A ground-truth pose this close to a scan's stamp is the scan's (s).
+constexpr double kGroundTruthStampMatch = 0.01;
+
+// Scan k and scan k + gap, referenced by a ground-truth trajectory (a simulated log's
+// .gt.tum): the poses within kGroundTruthStampMatch of the two scans' stamps.
+std::vector<ScanPair> pairsFromGroundTruth(const io::ScanLog &log, const std::string &path, std::size_t gap) {
+  io::Trajectory truth = io::readTum(path);
+  std::sort(truth.begin(), truth.end(),
+            [](const io::StampedPose &a, const io::StampedPose &b) { return a.stamp < b.stamp; });
+  std::vector<std::optional<io::Pose2D>> poses;
+  for (const io::LogEntry &entry : log.entries) {
+    const double stamp = entry.scan.stamp;
+    const auto after = std::lower_bound(truth.begin(), truth.end(), stamp,
+                                        [](const io::StampedPose &p, double t) { return p.stamp < t; });
+    std::optional<io::Pose2D> &nearest = poses.emplace_back();
+    double distance = kGroundTruthStampMatch;
+    for (auto it : {after - (after != truth.begin() ? 1 : 0), after})
+      if (it != truth.end() && std::abs(it->stamp - stamp) <= distance) {
+        distance = std::abs(it->stamp - stamp);
+        nearest = it->pose;
+      }
   }
-  return pairs;
+  return pairsFromPoses(log, poses, gap);
 }
 
 int runRelations(const RelationsOptions &options) {
@@ -140,11 +176,18 @@ int runRelations(const RelationsOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const io::ScanLog log = io::readLog(options.input, options.read);
   printReadReport(log);
-  std::vector<ScanPair> pairs =
-      options.log_pose_gap > 0 ? pairsFromLogPoses(log, options.log_pose_gap) : pairsFromRelations(log, options);
+  std::vector<ScanPair> pairs = !options.ground_truth.empty()
+                                    ? pairsFromGroundTruth(log, options.ground_truth, options.gt_gap)
+                                : options.log_pose_gap > 0 ? pairsFromLogPoses(log, options.log_pose_gap)
+                                                           : pairsFromRelations(log, options);
   if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
   const bool robot_frame = options.frame == "robot" && log.laser_pose.has_value();
-  if (options.log_pose_gap > 0)
+  if (!options.ground_truth.empty())
+    std::printf(
+        "%s: %zu pairs of scans %zu apart, referenced by %s, zero guess, success = within %.2f m and %.1f deg\n\n",
+        options.input.c_str(), pairs.size(), options.gt_gap, options.ground_truth.c_str(), options.tolerance,
+        options.tolerance_deg);
+  else if (options.log_pose_gap > 0)
     std::printf(
         "%s: %zu pairs of scans %zu apart, referenced by the log's poses, zero guess, success = within %.2f m and %.1f "
         "deg\n\n",
@@ -286,8 +329,18 @@ void addRelationsCommand(CLI::App &app) {
   auto *gap = command->add_option("--log-poses", options->log_pose_gap,
                                   "Instead of a relations file: scans k and k + N, referenced by the poses in the log "
                                   "(the corrected poses of the Radish logs)");
-  relations->excludes(gap);
-  gap->excludes(relations);
+  auto *truth = command
+                    ->add_option("--gt", options->ground_truth,
+                                 "Instead of a relations file: scans k and k + 1 (--gt-gap), referenced by this TUM "
+                                 "ground truth (a simulated log's .gt.tum; poses within 10 ms of the scans' stamps)")
+                    ->check(CLI::ExistingFile);
+  command->add_option("--gt-gap", options->gt_gap, "With --gt: pairs of scans this many apart")
+      ->capture_default_str()
+      ->check(positive())
+      ->needs(truth);
+  relations->excludes(gap)->excludes(truth);
+  gap->excludes(relations)->excludes(truth);
+  truth->excludes(relations)->excludes(gap);
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
   command->add_option("--max-dt", options->max_dt, "Only relations at most this far apart (s)")
       ->capture_default_str()
@@ -298,8 +351,9 @@ void addRelationsCommand(CLI::App &app) {
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
   addDeskewOption(*command, options->deskew);
-  command->callback([options, relations, gap]() {
-    if (relations->count() == 0 && gap->count() == 0) throw CLI::RequiredError("--relations or --log-poses");
+  command->callback([options, relations, gap, truth]() {
+    if (relations->count() == 0 && gap->count() == 0 && truth->count() == 0)
+      throw CLI::RequiredError("--relations, --log-poses or --gt");
     if (gap->count() > 0 && options->log_pose_gap == 0) throw CLI::ValidationError("--log-poses", "must be >= 1");
     validateMethodOptions(options->method_options);
     if (!options->pairs_csv.empty()) checkOutputFile("--pairs-csv", options->pairs_csv);

@@ -32,6 +32,13 @@ foreach(case "--arm;0" "--threshold;-1" "--contour-step;0" "--candidates;0" "--l
   expect_match("${LAST_ERR}" "${option}")
   expect_nothing_written()
 endforeach()
+# relations takes one reference: a relations file, the log's poses or a ground truth.
+foreach(case "--gt-gap;2" "--gt;${GT};--log-poses;1" "--gt;${GT};--gt-gap;0" "--gt;${OUT}/missing.gt.tum")
+  list(GET case 0 option)
+  expect_run(2 relations ${LOG} --methods contour --pairs-csv ${OUT}/pairs.csv ${case})
+  expect_match("${LAST_ERR}" "--gt")
+  expect_nothing_written()
+endforeach()
 expect_run(2 debug ${LOG} --threshold -1 --out ${OUT}/pictures)
 expect_match("${LAST_ERR}" "--threshold")
 expect_run(2 experiment --odometry-noise -1 --out ${OUT}/experiment)

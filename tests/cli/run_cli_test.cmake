@@ -135,6 +135,12 @@ foreach(row IN LISTS rows)
   endif()
 endforeach()
 
+# relations on a simulated log, referenced by its ground truth: scans two apart (0.5 m at 2 Hz),
+# every one of them recovered.
+expect_run(0 relations ${LOG} --gt ${GT} --gt-gap 2 --methods contour)
+expect_match("${LAST_OUT}" "97 pairs of scans 2 apart, referenced by [^\n]*L-hokuyo-2hz.gt.tum")
+expect_match("${LAST_OUT}" "\\| contour \\| 100.0 % \\| 100.0 % \\| 0.0 % \\|")
+
 # relations reports, for each kind of decline, on how many pairs the motion the method declined
 # was right. Without special points (threshold 0.99) every pair goes to the contours' own
 # hypotheses, and an overlap of 100 % is more than any pair gives: both pairs decline the motion
