@@ -196,7 +196,8 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
     if (!contour_->hasConverged()) {
       result.reason = contour_->getFailureReason();
       result.status = toString(contour_->getResult().status);
-      if (contour_->getResult().rejected) result.declined = contour_->getResult().rejected->transform;
+      if (!result.converged && contour_->getResult().rejected)
+        result.declined = contour_->getResult().rejected->transform;
     }
   }
   if (!result.converged && result.reason.empty()) result.reason = name_ + " did not converge";
