@@ -118,11 +118,24 @@ std::string declinedFields(const odometry::MatchResult &match) {
   return text;
 }
 
-std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const RelationsOptions &options) {
+// A reference stamp (of a relation, of a ground-truth pose) this close to a scan's stamp is the scan's (s).
+constexpr double kStampMatch = 0.01;
+
+// The relations at most max_dt long whose two stamps are each a scan's.
+std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const std::vector<io::Relation> &relations,
+                                         double max_dt) {
   std::vector<ScanPair> pairs;
-  for (const io::Relation &r : io::readRelations(options.relations))
-    if (std::abs(r.t2 - r.t1) <= options.max_dt)
-      pairs.push_back({io::nearestEntry(log, r.t1), io::nearestEntry(log, r.t2), r});
+  if (log.entries.empty()) return pairs;
+  const auto scanAt = [&](double stamp) -> std::optional<std::size_t> {
+    const std::size_t k = io::nearestEntry(log, stamp);
+    if (std::abs(log.entries[k].scan.stamp - stamp) <= kStampMatch) return k;
+    return std::nullopt;
+  };
+  for (const io::Relation &r : relations) {
+    if (std::abs(r.t2 - r.t1) > max_dt) continue;
+    const std::optional<std::size_t> first = scanAt(r.t1), second = scanAt(r.t2);
+    if (first && second) pairs.push_back({*first, *second, r});
+  }
   return pairs;
 }
 
@@ -146,11 +159,8 @@ std::vector<ScanPair> pairsFromLogPoses(const io::ScanLog &log, std::size_t gap)
   return pairsFromPoses(log, poses, gap);
 }
 
-// A ground-truth pose this close to a scan's stamp is the scan's (s).
-constexpr double kGroundTruthStampMatch = 0.01;
-
 // Scan k and scan k + gap, referenced by a ground-truth trajectory (a simulated log's
-// .gt.tum): the poses within kGroundTruthStampMatch of the two scans' stamps.
+// .gt.tum): the poses within kStampMatch of the two scans' stamps.
 std::vector<ScanPair> pairsFromGroundTruth(const io::ScanLog &log, const std::string &path, std::size_t gap) {
   io::Trajectory truth = io::readTum(path);
   std::sort(truth.begin(), truth.end(),
@@ -161,7 +171,7 @@ std::vector<ScanPair> pairsFromGroundTruth(const io::ScanLog &log, const std::st
     const auto after = std::lower_bound(truth.begin(), truth.end(), stamp,
                                         [](const io::StampedPose &p, double t) { return p.stamp < t; });
     std::optional<io::Pose2D> &nearest = poses.emplace_back();
-    double distance = kGroundTruthStampMatch;
+    double distance = kStampMatch;
     for (auto it : {after - (after != truth.begin() ? 1 : 0), after})
       if (it != truth.end() && std::abs(it->stamp - stamp) <= distance) {
         distance = std::abs(it->stamp - stamp);
@@ -176,10 +186,27 @@ int runRelations(const RelationsOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const io::ScanLog log = io::readLog(options.input, options.read);
   printReadReport(log);
+  std::vector<io::Relation> relations;
+  if (!options.relations.empty()) relations = io::readRelations(options.relations);
   std::vector<ScanPair> pairs = !options.ground_truth.empty()
                                     ? pairsFromGroundTruth(log, options.ground_truth, options.gt_gap)
                                 : options.log_pose_gap > 0 ? pairsFromLogPoses(log, options.log_pose_gap)
-                                                           : pairsFromRelations(log, options);
+                                                           : pairsFromRelations(log, relations, options.max_dt);
+  if (pairs.empty()) {
+    // References of another run pair no scans: say so rather than score nothing.
+    if (!options.ground_truth.empty())
+      std::fprintf(stderr, "error: no scan pair: %s has no pose at the stamps of scans %zu apart in %s\n",
+                   options.ground_truth.c_str(), options.gt_gap, options.input.c_str());
+    else if (options.log_pose_gap > 0)
+      std::fprintf(stderr, "error: no scan pair: %s has no poses of its own for scans %zu apart\n",
+                   options.input.c_str(), options.log_pose_gap);
+    else
+      std::fprintf(stderr,
+                   "error: no scan pair: none of the %zu relations has a scan of %s at both stamps (within %.0f ms), "
+                   "at most %.1f s apart\n",
+                   relations.size(), options.input.c_str(), 1000 * kStampMatch, options.max_dt);
+    return 1;
+  }
   if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
   const bool robot_frame = options.frame == "robot" && log.laser_pose.has_value();
   if (!options.ground_truth.empty())

@@ -87,6 +87,11 @@ expect_run(1 evaluate ${GT} --relations ${WORK_DIR}/other.relations)
 expect_match("${LAST_ERR}" "covers none of the 2 relations")
 expect_run(0 evaluate ${GT} --gt ${GT})
 expect_match("${LAST_OUT}" "ground truth: 99 of 99 poses matched")
+# relations likewise: relations or a ground truth of another run pair no scans of this log.
+expect_run(1 relations ${LOG} --relations ${WORK_DIR}/other.relations --methods contour)
+expect_match("${LAST_ERR}" "no scan pair: none of the 2 relations has a scan of .*L-hokuyo-2hz.clf at both stamps")
+expect_run(1 relations ${LOG} --gt ${WORK_DIR}/other.gt.tum --methods contour)
+expect_match("${LAST_ERR}" "no scan pair: .*other.gt.tum has no pose at the stamps of scans 1 apart")
 
 # simulate writes its ground truth where compare finds it.
 expect_run(2 simulate --path line --rate 2 --output ${WORK_DIR}/nowhere/s.clf)
