@@ -207,6 +207,11 @@ int runRelations(const RelationsOptions &options) {
                    relations.size(), options.input.c_str(), 1000 * kStampMatch, options.max_dt);
     return 1;
   }
+  // Relations short enough whose stamps are not both a scan's (a relation file of a longer log).
+  const std::size_t unpaired =
+      std::count_if(relations.begin(), relations.end(),
+                    [&](const io::Relation &r) { return std::abs(r.t2 - r.t1) <= options.max_dt; }) -
+      (options.relations.empty() ? 0 : pairs.size());
   if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
   const bool robot_frame = options.frame == "robot" && log.laser_pose.has_value();
   if (!options.ground_truth.empty())
@@ -219,9 +224,13 @@ int runRelations(const RelationsOptions &options) {
         "%s: %zu pairs of scans %zu apart, referenced by the log's poses, zero guess, success = within %.2f m and %.1f "
         "deg\n\n",
         options.input.c_str(), pairs.size(), options.log_pose_gap, options.tolerance, options.tolerance_deg);
-  else
+  else {
     std::printf("%s: %zu relations with |t2 - t1| <= %.1f s, zero guess, success = within %.2f m and %.1f deg\n\n",
                 options.input.c_str(), pairs.size(), options.max_dt, options.tolerance, options.tolerance_deg);
+    if (unpaired > 0)
+      std::printf("%zu more relations have no scan within %.0f ms of a stamp: left out\n\n", unpaired,
+                  1000 * kStampMatch);
+  }
   std::printf("estimates in %s\n\n",
               odometry::frameDescription(robot_frame ? odometry::Frame::kRobot : odometry::Frame::kLaser, log).c_str());
   std::FILE *csv = nullptr;

@@ -135,6 +135,13 @@ foreach(row IN LISTS rows)
   endif()
 endforeach()
 
+# A relation of another log (stamps far beyond this one's) is left out and counted, not paired
+# with the nearest scans.
+file(WRITE ${WORK_DIR}/mixed.relations "0.0 0.5 0.25 0 0 0 0 0\n1000001.0 1000002.0 0.5 0 0 0 0 0\n")
+expect_run(0 relations ${LOG} --relations ${WORK_DIR}/mixed.relations --methods contour)
+expect_match("${LAST_OUT}" ": 1 relations with [^\n]*\n\n1 more relations have no scan within 10 ms of a stamp: left out")
+expect_match("${LAST_OUT}" "\\| contour \\| 100.0 % \\| 100.0 % \\| 0.0 % \\|")
+
 # relations on a simulated log, referenced by its ground truth: scans two apart (0.5 m at 2 Hz),
 # every one of them recovered.
 expect_run(0 relations ${LOG} --gt ${GT} --gt-gap 2 --methods contour)
