@@ -2,6 +2,7 @@
 // with several methods and reports how many each recovers, and how fast.
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "commands.h"
 #include "contour_reg/core/transform_estimation.h"
 #include "contour_reg/evaluation/free_space_check.h"
+#include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
@@ -109,35 +111,36 @@ std::vector<std::string> agreementLines(const std::vector<std::string> &methods,
   return lines;
 }
 
+// printf into a string.
+std::string printed(const char *format, ...) __attribute__((format(printf, 1, 2)));
+std::string printed(const char *format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  std::string text(static_cast<std::size_t>(std::max(0, std::vsnprintf(nullptr, 0, format, args))), '\0');
+  va_end(args);
+  std::vsnprintf(text.data(), text.size() + 1, format, again);
+  va_end(again);
+  return text;
+}
+
 // The CSV's declined motion (x m, y m, yaw rad), empty fields when there is none.
 std::string declinedFields(const odometry::MatchResult &match) {
   if (!match.declined) return ",,";
   const Eigen::Matrix3d &d = *match.declined;
-  char text[96];
-  std::snprintf(text, sizeof text, "%.4f,%.4f,%.5f", d(0, 2), d(1, 2), yawOf(d));
-  return text;
+  return printed("%.4f,%.4f,%.5f", d(0, 2), d(1, 2), yawOf(d));
 }
 
-// A reference stamp (of a relation, of a ground-truth pose) this close to a scan's stamp is the scan's (s).
+// A relation's stamp this close to a scan's stamp is the scan's (s).
 constexpr double kStampMatch = 0.01;
 
-// The relations at most max_dt long whose two stamps are each a scan's.
-std::vector<ScanPair> pairsFromRelations(const io::ScanLog &log, const std::vector<io::Relation> &relations,
-                                         double max_dt) {
+// The scan pairs to register against their reference motions, and how the report names them.
+struct References {
   std::vector<ScanPair> pairs;
-  if (log.entries.empty()) return pairs;
-  const auto scanAt = [&](double stamp) -> std::optional<std::size_t> {
-    const std::size_t k = io::nearestEntry(log, stamp);
-    if (std::abs(log.entries[k].scan.stamp - stamp) <= kStampMatch) return k;
-    return std::nullopt;
-  };
-  for (const io::Relation &r : relations) {
-    if (std::abs(r.t2 - r.t1) > max_dt) continue;
-    const std::optional<std::size_t> first = scanAt(r.t1), second = scanAt(r.t2);
-    if (first && second) pairs.push_back({*first, *second, r});
-  }
-  return pairs;
-}
+  std::string kind;          // "relations with |t2 - t1| <= 5.0 s", "pairs of scans 1 apart, referenced by ..."
+  std::string none;          // why there is no pair, when there is none
+  std::size_t left_out = 0;  // relations short enough without a scan at both stamps
+};
 
 // Scan k and scan k + gap for every k where `poses` (one per log entry) has both poses.
 std::vector<ScanPair> pairsFromPoses(const io::ScanLog &log, const std::vector<std::optional<io::Pose2D>> &poses,
@@ -151,34 +154,53 @@ std::vector<ScanPair> pairsFromPoses(const io::ScanLog &log, const std::vector<s
   return pairs;
 }
 
-// Scan k and scan k + gap, referenced by the poses the log itself carries (in the GMapping-
-// corrected Radish logs, the corrected pose; in a raw log, wheel odometry).
-std::vector<ScanPair> pairsFromLogPoses(const io::ScanLog &log, std::size_t gap) {
-  std::vector<std::optional<io::Pose2D>> poses;
-  for (const io::LogEntry &entry : log.entries) poses.push_back(entry.odometry);
-  return pairsFromPoses(log, poses, gap);
-}
-
-// Scan k and scan k + gap, referenced by a ground-truth trajectory (a simulated log's
-// .gt.tum): the poses within kStampMatch of the two scans' stamps.
-std::vector<ScanPair> pairsFromGroundTruth(const io::ScanLog &log, const std::string &path, std::size_t gap) {
-  io::Trajectory truth = io::readTum(path);
-  std::sort(truth.begin(), truth.end(),
-            [](const io::StampedPose &a, const io::StampedPose &b) { return a.stamp < b.stamp; });
-  std::vector<std::optional<io::Pose2D>> poses;
-  for (const io::LogEntry &entry : log.entries) {
-    const double stamp = entry.scan.stamp;
-    const auto after = std::lower_bound(truth.begin(), truth.end(), stamp,
-                                        [](const io::StampedPose &p, double t) { return p.stamp < t; });
-    std::optional<io::Pose2D> &nearest = poses.emplace_back();
-    double distance = kStampMatch;
-    for (auto it : {after - (after != truth.begin() ? 1 : 0), after})
-      if (it != truth.end() && std::abs(it->stamp - stamp) <= distance) {
-        distance = std::abs(it->stamp - stamp);
-        nearest = it->pose;
-      }
+// The pairs of one of the three references: a relations file (each relation whose two stamps
+// are a scan's, within kStampMatch), the log's own poses (in the GMapping-corrected Radish
+// logs, the corrected pose; in a raw log, wheel odometry), or a ground-truth trajectory (a
+// simulated log's .gt.tum, interpolated at the scans' stamps as `evaluate` does).
+References referencePairs(const io::ScanLog &log, const RelationsOptions &options) {
+  References references;
+  if (!options.ground_truth.empty()) {
+    io::Trajectory truth = io::readTum(options.ground_truth);
+    std::sort(truth.begin(), truth.end(),
+              [](const io::StampedPose &a, const io::StampedPose &b) { return a.stamp < b.stamp; });
+    std::vector<std::optional<io::Pose2D>> poses;
+    for (const io::LogEntry &entry : log.entries) poses.push_back(evaluation::poseAt(truth, entry.scan.stamp));
+    references.pairs = pairsFromPoses(log, poses, options.gt_gap);
+    references.kind =
+        printed("pairs of scans %zu apart, referenced by %s", options.gt_gap, options.ground_truth.c_str());
+    references.none = printed("%s has no pose at the stamps of scans %zu apart in %s", options.ground_truth.c_str(),
+                              options.gt_gap, options.input.c_str());
+  } else if (options.log_pose_gap > 0) {
+    std::vector<std::optional<io::Pose2D>> poses;
+    for (const io::LogEntry &entry : log.entries) poses.push_back(entry.odometry);
+    references.pairs = pairsFromPoses(log, poses, options.log_pose_gap);
+    references.kind = printed("pairs of scans %zu apart, referenced by the log's poses", options.log_pose_gap);
+    references.none =
+        printed("%s has no poses of its own for scans %zu apart", options.input.c_str(), options.log_pose_gap);
+  } else {
+    const std::vector<io::Relation> relations = io::readRelations(options.relations);
+    const auto scanAt = [&](double stamp) -> std::optional<std::size_t> {
+      if (log.entries.empty()) return std::nullopt;
+      const std::size_t k = io::nearestEntry(log, stamp);
+      if (std::abs(log.entries[k].scan.stamp - stamp) > kStampMatch) return std::nullopt;
+      return k;
+    };
+    for (const io::Relation &r : relations) {
+      if (std::abs(r.t2 - r.t1) > options.max_dt) continue;
+      const std::optional<std::size_t> first = scanAt(r.t1), second = scanAt(r.t2);
+      if (first && second)
+        references.pairs.push_back({*first, *second, r});
+      else
+        ++references.left_out;
+    }
+    references.kind = printed("relations with |t2 - t1| <= %.1f s", options.max_dt);
+    references.none = printed(
+        "none of the %zu relations has a scan of %s at both stamps (within %.0f ms), at most "
+        "%.1f s apart",
+        relations.size(), options.input.c_str(), 1000 * kStampMatch, options.max_dt);
   }
-  return pairsFromPoses(log, poses, gap);
+  return references;
 }
 
 int runRelations(const RelationsOptions &options) {
@@ -186,51 +208,19 @@ int runRelations(const RelationsOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const io::ScanLog log = io::readLog(options.input, options.read);
   printReadReport(log);
-  std::vector<io::Relation> relations;
-  if (!options.relations.empty()) relations = io::readRelations(options.relations);
-  std::vector<ScanPair> pairs = !options.ground_truth.empty()
-                                    ? pairsFromGroundTruth(log, options.ground_truth, options.gt_gap)
-                                : options.log_pose_gap > 0 ? pairsFromLogPoses(log, options.log_pose_gap)
-                                                           : pairsFromRelations(log, relations, options.max_dt);
-  if (pairs.empty()) {
-    // References of another run pair no scans: say so rather than score nothing.
-    if (!options.ground_truth.empty())
-      std::fprintf(stderr, "error: no scan pair: %s has no pose at the stamps of scans %zu apart in %s\n",
-                   options.ground_truth.c_str(), options.gt_gap, options.input.c_str());
-    else if (options.log_pose_gap > 0)
-      std::fprintf(stderr, "error: no scan pair: %s has no poses of its own for scans %zu apart\n",
-                   options.input.c_str(), options.log_pose_gap);
-    else
-      std::fprintf(stderr,
-                   "error: no scan pair: none of the %zu relations has a scan of %s at both stamps (within %.0f ms), "
-                   "at most %.1f s apart\n",
-                   relations.size(), options.input.c_str(), 1000 * kStampMatch, options.max_dt);
+  References references = referencePairs(log, options);
+  std::vector<ScanPair> &pairs = references.pairs;
+  if (pairs.empty()) {  // references of another run: say so rather than score nothing
+    std::fprintf(stderr, "error: no scan pair: %s\n", references.none.c_str());
     return 1;
   }
-  // Relations short enough whose stamps are not both a scan's (a relation file of a longer log).
-  const std::size_t unpaired =
-      std::count_if(relations.begin(), relations.end(),
-                    [&](const io::Relation &r) { return std::abs(r.t2 - r.t1) <= options.max_dt; }) -
-      (options.relations.empty() ? 0 : pairs.size());
   if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
   const bool robot_frame = options.frame == "robot" && log.laser_pose.has_value();
-  if (!options.ground_truth.empty())
-    std::printf(
-        "%s: %zu pairs of scans %zu apart, referenced by %s, zero guess, success = within %.2f m and %.1f deg\n\n",
-        options.input.c_str(), pairs.size(), options.gt_gap, options.ground_truth.c_str(), options.tolerance,
-        options.tolerance_deg);
-  else if (options.log_pose_gap > 0)
-    std::printf(
-        "%s: %zu pairs of scans %zu apart, referenced by the log's poses, zero guess, success = within %.2f m and %.1f "
-        "deg\n\n",
-        options.input.c_str(), pairs.size(), options.log_pose_gap, options.tolerance, options.tolerance_deg);
-  else {
-    std::printf("%s: %zu relations with |t2 - t1| <= %.1f s, zero guess, success = within %.2f m and %.1f deg\n\n",
-                options.input.c_str(), pairs.size(), options.max_dt, options.tolerance, options.tolerance_deg);
-    if (unpaired > 0)
-      std::printf("%zu more relations have no scan within %.0f ms of a stamp: left out\n\n", unpaired,
-                  1000 * kStampMatch);
-  }
+  std::printf("%s: %zu %s, zero guess, success = within %.2f m and %.1f deg\n\n", options.input.c_str(), pairs.size(),
+              references.kind.c_str(), options.tolerance, options.tolerance_deg);
+  if (references.left_out > 0)
+    std::printf("%zu more relations have no scan within %.0f ms of a stamp: left out\n\n", references.left_out,
+                1000 * kStampMatch);
   std::printf("estimates in %s\n\n",
               odometry::frameDescription(robot_frame ? odometry::Frame::kRobot : odometry::Frame::kLaser, log).c_str());
   std::FILE *csv = nullptr;
@@ -368,7 +358,7 @@ void addRelationsCommand(CLI::App &app) {
   auto *truth = command
                     ->add_option("--gt", options->ground_truth,
                                  "Instead of a relations file: scans k and k + 1 (--gt-gap), referenced by this TUM "
-                                 "ground truth (a simulated log's .gt.tum; poses within 10 ms of the scans' stamps)")
+                                 "ground truth (a simulated log's .gt.tum), interpolated at the scans' stamps")
                     ->check(CLI::ExistingFile);
   command->add_option("--gt-gap", options->gt_gap, "With --gt: pairs of scans this many apart")
       ->capture_default_str()
