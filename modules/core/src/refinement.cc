@@ -69,28 +69,26 @@ struct BearingIndex {
     return j;
   }
 
-  // Nearest point to p among those near p's bearing; -1 when none within max_distance.
+  // Nearest point to p among those near p's bearing; -1 when none within max_distance: walks
+  // outwards from p's bearing while the points get closer, and four points more.
   int nearest(const Eigen::Vector2d &p, double max_distance) const {
     if (points.empty()) return -1;
-    const double b = approximateAtan2(p.y(), p.x());
-    const long start = firstAtOrAbove(b);
+    const long start = firstAtOrAbove(approximateAtan2(p.y(), p.x()));
     const long size = static_cast<long>(points.size());
-    int best = -1;
+    const Eigen::Vector2d *point = points.data();
+    long best = -1;
     double best_d2 = max_distance * max_distance;
-    for (int direction : {-1, 1}) {  // walk outwards while it gets closer, and a few beams more
-      int worse = 0;
-      for (long j = direction < 0 ? start - 1 : start; worse < 4 && j >= 0 && j < size; j += direction) {
-        const double d2 = (points[j] - p).squaredNorm();
-        if (d2 < best_d2) {
-          best_d2 = d2;
-          best = static_cast<int>(j);
-          worse = 0;
-        } else {
-          ++worse;
-        }
-      }
-    }
-    return best;
+    // Selects without branching on the distances, which follow no pattern a branch predictor learns.
+    const auto visit = [&](long j, long &worse) {
+      const double d2 = (point[j] - p).squaredNorm();
+      const bool closer = d2 < best_d2;
+      best_d2 = closer ? d2 : best_d2;
+      best = closer ? j : best;
+      worse = closer ? 0 : worse + 1;
+    };
+    for (long j = start - 1, worse = 0; worse < 4 && j >= 0; --j) visit(j, worse);
+    for (long j = start, worse = 0; worse < 4 && j < size; ++j) visit(j, worse);
+    return static_cast<int>(best);
   }
 
   // Unit normal of the target contour at point j (false where it has none).
