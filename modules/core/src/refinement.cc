@@ -35,7 +35,8 @@ struct BearingIndex {
     for (std::size_t k = 0; k < target.contours.size(); ++k)
       for (std::size_t n = 0; n < target.contours[k].vertices.size(); ++n)
         order.push_back({std::arg(target.contours[k].vertices[n]), {int(k), int(n)}});
-    std::sort(order.begin(), order.end());
+    // A scan's contours follow its beams, so the vertices usually come in bearing order already.
+    if (!std::is_sorted(order.begin(), order.end())) std::sort(order.begin(), order.end());
     points.clear();
     segment.clear();
     bearing.clear();
