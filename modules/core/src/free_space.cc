@@ -66,6 +66,7 @@ void RangeView::index() {
     bearings_.swap(bearings);
     ranges_.swap(ranges);
   }
+  buckets_.build(bearings_, 2);
   max_gap_ = 0.0;
   if (bearings_.size() < 2) return;
   spacing_.resize(bearings_.size() - 1);
@@ -76,7 +77,7 @@ void RangeView::index() {
 
 double RangeView::rangeAt(double bearing) const {
   if (bearings_.size() < 2) return -1.0;
-  const auto above = std::lower_bound(bearings_.begin(), bearings_.end(), bearing);
+  const auto above = bearings_.begin() + buckets_.firstAtOrAbove(bearings_, bearing);
   std::size_t lo, hi;
   double gap;
   if (above == bearings_.begin() || above == bearings_.end()) {  // across the +-pi cut

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "contour_reg/core/bearing_buckets.h"
 #include "contour_reg/core/transform_estimation.h"
 
 namespace contour_reg {
@@ -24,10 +25,7 @@ struct BearingIndex {
   std::vector<Eigen::Vector2d> normals;  // computeNormal of each point, once per target
   std::vector<char> has_normal;
   std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (contour, vertex): kept for the next build
-  // Bearing buckets of equal width over [-pi, pi): the first point at or above each bucket's
-  // lower edge, so a search starts a few points before its answer instead of bisecting.
-  std::vector<long> bucket_first;
-  double buckets_per_rad = 0.0;
+  BearingBuckets buckets;
 
   // Indexes `target`, reusing the buffers of the last build.
   void build(const ContourFeatures &target) {
@@ -48,33 +46,14 @@ struct BearingIndex {
     normals.assign(points.size(), Eigen::Vector2d::Zero());
     has_normal.assign(points.size(), 0);
     for (std::size_t j = 0; j < points.size(); ++j) has_normal[j] = computeNormal(static_cast<int>(j), normals[j]);
-    const long buckets = 4 * static_cast<long>(bearing.size()) + 1;
-    buckets_per_rad = static_cast<double>(buckets) / (2.0 * M_PI);
-    bucket_first.resize(static_cast<std::size_t>(buckets));
-    long first = 0;
-    for (long k = 0; k < buckets; ++k) {
-      const double edge = -M_PI + static_cast<double>(k) / buckets_per_rad;
-      while (first < static_cast<long>(bearing.size()) && bearing[first] < edge) ++first;
-      bucket_first[k] = first;
-    }
-  }
-
-  // The first point whose bearing is at or above b (points.size() when none): std::lower_bound,
-  // started from b's bucket.
-  long firstAtOrAbove(double b) const {
-    const double at = (b + M_PI) * buckets_per_rad;
-    const long last = static_cast<long>(bucket_first.size()) - 1;
-    const long k = at >= 0.0 ? std::min(static_cast<long>(at), last) : 0;  // NaN: bucket 0
-    long j = bucket_first[k];
-    while (j < static_cast<long>(bearing.size()) && bearing[j] < b) ++j;
-    return j;
+    buckets.build(bearing, 4);
   }
 
   // Nearest point to p among those near p's bearing; -1 when none within max_distance: walks
   // outwards from p's bearing while the points get closer, and four points more.
   int nearest(const Eigen::Vector2d &p, double max_distance) const {
     if (points.empty()) return -1;
-    const long start = firstAtOrAbove(approximateAtan2(p.y(), p.x()));
+    const long start = buckets.firstAtOrAbove(bearing, approximateAtan2(p.y(), p.x()));
     const long size = static_cast<long>(points.size());
     const Eigen::Vector2d *point = points.data();
     long best = -1;

@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 
+#include "contour_reg/core/bearing_buckets.h"
 #include "contour_reg/core/contour_features.h"
 
 namespace contour_reg {
@@ -70,9 +71,10 @@ class RangeView {
 
  private:
   std::vector<double> bearings_, ranges_;
+  BearingBuckets buckets_;       // over bearings_
   std::vector<double> spacing_;  // working memory of assign()
   void add(const Complex &point);
-  void index();           // sorts by bearing and sets max_gap_
+  void index();           // sorts by bearing, buckets the bearings and sets max_gap_
   double max_gap_ = 0.0;  // rad, bracketing returns farther apart than this leave a gap
 };
 
