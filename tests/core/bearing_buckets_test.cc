@@ -16,11 +16,13 @@ long lowerBound(const std::vector<double> &bearings, double b) {
 }
 
 // Every query answered as std::lower_bound answers it: at each bearing, one representable
-// number either side of it, between and beyond them, and NaN.
+// number either side of it, between and far beyond them, infinite and NaN.
 void expectLowerBound(const std::vector<double> &bearings, long per_point) {
   BearingBuckets buckets;
   buckets.build(bearings, per_point);
-  std::vector<double> queries = {-4.0, -M_PI, M_PI, 4.0, 0.0, std::numeric_limits<double>::quiet_NaN()};
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> queries = {-4.0, -M_PI, M_PI,  4.0,   0.0, std::numeric_limits<double>::quiet_NaN(),
+                                 inf,  -inf,  1e300, -1e300};
   for (double b : bearings) {
     queries.push_back(b);
     queries.push_back(std::nextafter(b, -10.0));

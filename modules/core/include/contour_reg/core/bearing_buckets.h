@@ -33,7 +33,8 @@ class BearingBuckets {
     if (first_.empty()) return 0;
     const double at = (b + M_PI) * per_rad_;
     const long last = static_cast<long>(first_.size()) - 1;
-    const long k = at >= 0.0 ? std::min(static_cast<long>(at), last) : 0;  // NaN: bucket 0
+    // Clamped before the conversion, which is undefined out of range; NaN: bucket 0.
+    const long k = at >= static_cast<double>(last) ? last : at >= 0.0 ? static_cast<long>(at) : 0;
     long j = first_[k];
     const long size = static_cast<long>(bearings.size());
     while (j > 0 && bearings[j - 1] >= b) --j;  // b rounded into the next bucket
