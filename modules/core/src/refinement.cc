@@ -58,7 +58,7 @@ struct BearingIndex {
     const Eigen::Vector2d *point = points.data();
     long best = -1;
     double best_d2 = max_distance * max_distance;
-    // Selects without branching on the distances, which follow no pattern a branch predictor learns.
+    // Down from p's bearing, then up, each way in a loop of its own over the points' array.
     const auto visit = [&](long j, long &worse) {
       const double d2 = (point[j] - p).squaredNorm();
       const bool closer = d2 < best_d2;
