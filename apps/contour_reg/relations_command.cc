@@ -161,9 +161,7 @@ std::vector<ScanPair> pairsFromPoses(const io::ScanLog &log, const std::vector<s
 References referencePairs(const io::ScanLog &log, const RelationsOptions &options) {
   References references;
   if (!options.ground_truth.empty()) {
-    io::Trajectory truth = io::readTum(options.ground_truth);
-    std::sort(truth.begin(), truth.end(),
-              [](const io::StampedPose &a, const io::StampedPose &b) { return a.stamp < b.stamp; });
+    const io::Trajectory truth = io::readTum(options.ground_truth);
     std::vector<std::optional<io::Pose2D>> poses;
     for (const io::LogEntry &entry : log.entries) poses.push_back(evaluation::poseAt(truth, entry.scan.stamp));
     references.pairs = pairsFromPoses(log, poses, options.gt_gap);

@@ -21,6 +21,19 @@ TEST(Tum, WrittenTrajectoriesReadBack) {
   EXPECT_NEAR(read[0].pose.yaw, 0.5, 1e-6);
 }
 
+TEST(Tum, ATrajectoryIsReadInStampOrder) {
+  // Trajectories appended from several runs, or merged by hand, need not be in stamp order;
+  // poses are looked up by stamp (evaluation::poseAt bisects them).
+  test::TempDir dir;
+  const auto path = dir.write("t.tum", "3 3 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n2 2 0 0 0 0 0 1\n");
+  const Trajectory read = readTum(path);
+  ASSERT_EQ(read.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_DOUBLE_EQ(read[k].stamp, static_cast<double>(k + 1));
+    EXPECT_DOUBLE_EQ(read[k].pose.x, static_cast<double>(k + 1));
+  }
+}
+
 TEST(Tum, ABadLineIsAnErrorNamingFileAndLine) {
   test::TempDir dir;
   const auto path = dir.write("t.tum", "# header\n1 0 0 0 0 0 0 1\n2 0 0 0 zero 0 0 1\n");

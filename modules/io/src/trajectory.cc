@@ -1,5 +1,6 @@
 #include "contour_reg/io/trajectory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -52,6 +53,8 @@ Trajectory readTum(const std::string &path) {
     const double yaw = std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz));
     trajectory.push_back({r[0], {r[1], r[2], yaw}});
   }
+  std::stable_sort(trajectory.begin(), trajectory.end(),
+                   [](const StampedPose &a, const StampedPose &b) { return a.stamp < b.stamp; });
   return trajectory;
 }
 

@@ -20,7 +20,8 @@ struct Relation {
 
 /// Writes a TUM file; a non-empty `comment` becomes a `#` line at its head (readTum skips it).
 void writeTum(const std::string &path, const Trajectory &trajectory, const std::string &comment = {});
-/// Reads a TUM file; the yaw is taken from the quaternion. Throws ReadError naming file and line.
+/// Reads a TUM file, in stamp order whatever the file's order; the yaw is taken from the
+/// quaternion. Throws ReadError naming file and line.
 Trajectory readTum(const std::string &path);
 /// Reads a relations file. Throws ReadError naming file and line.
 std::vector<Relation> readRelations(const std::string &path);
