@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 
@@ -33,6 +34,7 @@ struct RelationsOptions {
   std::string input, relations;
   std::vector<std::string> methods = {"contour", "contour+icp", "icp", "icp-pl", "ndt2d"};
   double max_dt = 5.0, tolerance = 0.10, tolerance_deg = 2.0;
+  std::vector<double> reference_sigma = {0.02, 0.5};  // m, deg: the reference's own error, for the NEES
   std::size_t limit = 0;
   std::string pairs_csv;         // one row per relation and method, when set
   std::size_t log_pose_gap = 0;  // > 0: pairs k, k + gap referenced by the log's own poses
@@ -239,8 +241,9 @@ int runRelations(const RelationsOptions &options) {
     return timed ? odometry::wheelMotionOverSweep(log, k).value_or(SweepMotion{}) : SweepMotion{};
   };
   std::fflush(stdout);
-  std::vector<std::string> failures;     // printed after the table
-  std::vector<std::string> gross_lines;  // likewise
+  std::vector<std::string> failures;          // printed after the table
+  std::vector<std::string> gross_lines;       // likewise
+  std::vector<std::string> covariance_lines;  // likewise
   std::vector<std::vector<Answer>> answers;
   const auto within = [&](const Apart &d) {
     return d.metres <= options.tolerance && d.degrees <= options.tolerance_deg;
@@ -254,6 +257,7 @@ int runRelations(const RelationsOptions &options) {
     std::size_t recovered = 0, converged = 0, wrong = 0, gross = 0, gross_against_reference = 0;
     double error_sum = 0.0;
     std::vector<double> ms;
+    std::vector<double> nees;  // of the converged pairs with a covariance
     for (const ScanPair &pair : pairs) {
       progress(ms.size(), pairs.size());
       const io::Relation &r = pair.reference;
@@ -306,6 +310,10 @@ int runRelations(const RelationsOptions &options) {
                      match.converged ? "converged" : match.status.c_str(), match.reason.c_str(), c(0, 0), c(0, 1),
                      c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space, declinedFields(match).c_str());
       }
+      if (match.converged && !match.covariance.isZero())
+        nees.push_back(evaluation::normalisedErrorSquared(io::toPose(t), r.motion, match.covariance,
+                                                          options.reference_sigma[0],
+                                                          options.reference_sigma[1] * M_PI / 180.0));
       if (match.converged && ok) {
         ++recovered;
         error_sum += et;
@@ -322,6 +330,16 @@ int runRelations(const RelationsOptions &options) {
                           std::to_string(gross_against_reference) +
                           " with a reference the scans contradict and an estimate they do not (returns in the other "
                           "scan's free space; --pairs-csv: ref_free_space, est_free_space)");
+    if (!nees.empty()) {
+      const auto outside = std::count_if(nees.begin(), nees.end(), [](double v) { return v > evaluation::kNees99; });
+      covariance_lines.push_back(
+          printed("%s: covariance: mean NEES %.2f over %zu converged pairs, %.1f %% above %.2f (outside the 99 %% "
+                  "ellipsoid); an honest covariance gives 3 and 1 %%. The reference's own error, %.3g m / %.3g deg, is "
+                  "added (--reference-sigma)",
+                  name.c_str(), std::accumulate(nees.begin(), nees.end(), 0.0) / static_cast<double>(nees.size()),
+                  nees.size(), 100.0 * static_cast<double>(outside) / static_cast<double>(nees.size()),
+                  evaluation::kNees99, options.reference_sigma[0], options.reference_sigma[1]));
+    }
     for (const auto &[reason, count] : reasons)
       failures.push_back(name + " failed: " + reason + ": " + std::to_string(count) +
                          (declined_right.count(reason) ? "; the motion it declined was within the tolerance on " +
@@ -332,6 +350,7 @@ int runRelations(const RelationsOptions &options) {
   if (csv) std::fclose(csv);
   std::printf("\n");
   for (const std::string &line : gross_lines) std::printf("%s\n", line.c_str());
+  for (const std::string &line : covariance_lines) std::printf("%s\n", line.c_str());
   // Two estimates within half the recovery tolerance of each other agree.
   for (const std::string &line :
        agreementLines(options.methods, answers, {options.tolerance / 2, options.tolerance_deg / 2}))
@@ -373,6 +392,13 @@ void addRelationsCommand(CLI::App &app) {
   addFrameOption(*command, options->frame);
   addMethodOptions(*command, options->method_options);
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
+  command
+      ->add_option("--reference-sigma", options->reference_sigma,
+                   "The reference's own error, added to each covariance for the NEES line (m, deg; 0.05 1 suits "
+                   "the Radish logs' corrected poses)")
+      ->expected(2)
+      ->capture_default_str()
+      ->check(nonNegative());
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
   addDeskewOption(*command, options->deskew);
   command->callback([options, relations, gap, truth]() {

@@ -39,6 +39,11 @@ foreach(case "--gt-gap;2" "--gt;${GT};--log-poses;1" "--gt;${GT};--gt-gap;0" "--
   expect_match("${LAST_ERR}" "--gt")
   expect_nothing_written()
 endforeach()
+# The reference's error for the NEES line: two numbers, neither negative.
+foreach(case "--reference-sigma;0.05" "--reference-sigma;0.05;-1")
+  expect_run(2 relations ${LOG} --log-poses 1 --methods contour ${case})
+  expect_match("${LAST_ERR}" "--reference-sigma")
+endforeach()
 expect_run(2 debug ${LOG} --threshold -1 --out ${OUT}/pictures)
 expect_match("${LAST_ERR}" "--threshold")
 expect_run(2 experiment --odometry-noise -1 --out ${OUT}/experiment)

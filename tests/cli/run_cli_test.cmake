@@ -122,6 +122,16 @@ endif()
 expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour contour+icp icp icp-pl)
 expect_match("${LAST_OUT}" "contour: 1 converged but wrong; an independent method converged within 5 cm and 1 deg of 1 of them \\(icp 1, icp-pl 1\\)")
 expect_match("${LAST_OUT}" "icp-pl: 1 converged but wrong; [^\n]* of 1 of them \\(contour 1, contour\\+icp 1\\)")
+# The covariance line: the 1.25 m error of the second relation lies far outside the 99 %
+# ellipsoid of the reported covariance and the 2 cm / 0.5 deg reference floor, the first pair
+# inside; ICP and point-to-line ICP report no covariance, so no line.
+expect_match("${LAST_OUT}" "\ncontour: covariance: mean NEES [0-9.]+ over 2 converged pairs, 50.0 % above 11.34")
+if(LAST_OUT MATCHES "\n(icp|icp-pl): covariance")
+  message(FATAL_ERROR "relations reports a covariance for a method that gives none:\n${LAST_OUT}")
+endif()
+# A reference error of 0.5 m / 30 deg covers that 1.25 m error (NEES about 6).
+expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour --reference-sigma 0.5 30)
+expect_match("${LAST_OUT}" "contour: covariance: [^\n]*, 0.0 % above 11.34 [^\n]*0.5 m / 30 deg")
 file(STRINGS ${WORK_DIR}/straight.csv rows REGEX "^contour,")
 foreach(row IN LISTS rows)
   string(REPLACE "," ";" fields "${row}")

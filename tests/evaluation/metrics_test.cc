@@ -85,6 +85,24 @@ TEST(Metrics, RelationErrorsOfAnExactTrajectoryAreZeroAndOfAShiftedOneAreTheShif
   EXPECT_EQ(relationErrors(truth, relations, 2.0).count, 0u);  // all are 3 s apart
 }
 
+TEST(Metrics, NormalisedErrorSquaredWeighsEachErrorByItsCovarianceAndTheReferenceFloor) {
+  const io::Pose2D reference{1.0, 2.0, 0.1};
+  // 3 cm off along x against a 3 cm standard deviation there: 1.
+  Eigen::Matrix3d covariance = Eigen::Vector3d(0.03 * 0.03, 1e-4, 1e-4).asDiagonal();
+  EXPECT_NEAR(normalisedErrorSquared({1.03, 2.0, 0.1}, reference, covariance, 0.0, 0.0), 1.0, 1e-9);
+  // The reference's own 4 cm add to the 3 cm in quadrature: 5 cm, so 10 cm off gives 4.
+  EXPECT_NEAR(normalisedErrorSquared({1.10, 2.0, 0.1}, reference, covariance, 0.04, 0.0), 4.0, 1e-9);
+  // The yaw error is wrapped: 2 pi - 0.02 rad off is 0.02 rad off, against 0.01 rad: 4.
+  covariance(2, 2) = 0.01 * 0.01;
+  EXPECT_NEAR(normalisedErrorSquared({1.0, 2.0, 0.1 + 2 * M_PI - 0.02}, reference, covariance, 0.0, 0.0), 4.0, 1e-9);
+  // Correlated x and y: an error along the long axis of the ellipse counts less than across it.
+  covariance << 0.02, 0.018, 0, 0.018, 0.02, 0, 0, 0, 1e-4;
+  const double along = normalisedErrorSquared({1.1, 2.1, 0.1}, reference, covariance, 0.0, 0.0);
+  const double across = normalisedErrorSquared({1.1, 1.9, 0.1}, reference, covariance, 0.0, 0.0);
+  EXPECT_NEAR(along, 0.02 / 0.038, 1e-9);   // (0.1, 0.1) on eigenvalue 0.038
+  EXPECT_NEAR(across, 0.02 / 0.002, 1e-9);  // (0.1, -0.1) on eigenvalue 0.002
+}
+
 TEST(Metrics, PosesBetweenSamplesAreInterpolated) {
   const io::Trajectory t{{0.0, {0, 0, 0}}, {2.0, {2, 0, 0.2}}};
   const auto p = poseAt(t, 1.0, 3.0);

@@ -22,6 +22,16 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+double normalisedErrorSquared(const io::Pose2D &estimate, const io::Pose2D &reference,
+                              const Eigen::Matrix3d &covariance, double floor_m, double floor_rad) {
+  const Eigen::Vector3d error(estimate.x - reference.x, estimate.y - reference.y,
+                              std::remainder(estimate.yaw - reference.yaw, 2.0 * M_PI));
+  const Eigen::Matrix3d spread =
+      covariance +
+      Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad).asDiagonal().toDenseMatrix();
+  return error.dot(spread.ldlt().solve(error));
+}
+
 namespace {
 
 using io::between;

@@ -9,6 +9,8 @@
 #include <optional>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "contour_reg/io/trajectory.h"
 
 namespace contour_reg::evaluation {
@@ -63,6 +65,16 @@ struct RelationErrors {
 };
 RelationErrors relationErrors(const io::Trajectory &estimate, const std::vector<io::Relation> &relations,
                               double max_dt = std::numeric_limits<double>::infinity());
+
+/// How well reported covariances describe the errors they belong to: the normalised
+/// estimation error squared (NEES) e^T (C + F)^-1 e, with e the estimate less the reference
+/// (x, y and the yaw wrapped to [-pi, pi], both relative motions in one frame), C the
+/// estimate's covariance and F = diag(floor_m^2, floor_m^2, floor_rad^2) the reference's own
+/// error. An honest covariance of a motion in (x, y, yaw) gives a mean of 3, and 1 % of
+/// errors above kNees99 (chi-square, 3 degrees of freedom).
+constexpr double kNees99 = 11.34;
+double normalisedErrorSquared(const io::Pose2D &estimate, const io::Pose2D &reference,
+                              const Eigen::Matrix3d &covariance, double floor_m, double floor_rad);
 
 /// Every metric the references allow: against ground truth (end point, drift, ATE) and
 /// against relations (all of them, and the local ones with |t2 - t1| <= local_dt). A
