@@ -96,6 +96,21 @@ def test_relation_errors_of_the_truth_are_zero(s_run):
     assert cr.relation_errors(wheel.trajectory, relations)["translation_mean_m"] < 0.02
 
 
+def test_normalised_error_squared_weighs_the_error_by_the_covariance_and_the_reference_floor(s_run):
+    covariance = np.diag([0.03 ** 2, 1e-4, 1e-4])
+    assert cr.normalised_error_squared((1.03, 2, 0.1), (1, 2, 0.1), covariance, (0, 0)) == pytest.approx(1.0)
+    # 3 cm and the reference's 4 cm in quadrature: 5 cm; 10 cm off gives 4.
+    assert cr.normalised_error_squared((1.1, 2, 0.1), (1, 2, 0.1), covariance, (0.04, 0)) == pytest.approx(4.0)
+    with pytest.raises(ValueError):
+        cr.normalised_error_squared((1, 2, 0.1), (1, 2, 0.1), covariance, (-1, 0))
+    # The covariance of a registration covers its error against the truth.
+    gt = s_run.ground_truth
+    result = cr.register(s_run.log[10], s_run.log[5])
+    truth = cr.relative_pose(gt[5, 1:], gt[10, 1:])
+    assert result.converged
+    assert 0 < cr.normalised_error_squared(result.pose, truth, result.covariance) < 11.34
+
+
 def test_write_and_read_back(tmp_path, s_run):
     path = tmp_path / "s.clf"
     cr.write_carmen(str(path), s_run.log)
