@@ -41,7 +41,7 @@ from ._core import (
 
 __all__ = [
     "Features", "LaserScan", "Log", "OdometryRun", "OdometryStep", "ReadError", "RegistrationResult",
-    "SimulatedRun", "evaluate", "features", "matrix_pose", "methods", "normalised_error_squared", "odometry", "pose_matrix", "read_log",
-    "read_relations", "read_tum", "register", "relation_errors", "relative_pose", "simulate", "write_carmen",
-    "write_tum",
+    "SimulatedRun", "evaluate", "features", "matrix_pose", "methods", "normalised_error_squared", "odometry",
+    "pose_matrix", "read_log", "read_relations", "read_tum", "register", "relation_errors", "relative_pose",
+    "simulate", "write_carmen", "write_tum",
 ]

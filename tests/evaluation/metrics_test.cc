@@ -101,6 +101,8 @@ TEST(Metrics, NormalisedErrorSquaredWeighsEachErrorByItsCovarianceAndTheReferenc
   const double across = normalisedErrorSquared({1.1, 1.9, 0.1}, reference, covariance, 0.0, 0.0);
   EXPECT_NEAR(along, 0.02 / 0.038, 1e-9);   // (0.1, 0.1) on eigenvalue 0.038
   EXPECT_NEAR(across, 0.02 / 0.002, 1e-9);  // (0.1, -0.1) on eigenvalue 0.002
+  // No covariance and no floor: nothing covers any error.
+  EXPECT_TRUE(std::isinf(normalisedErrorSquared({1.01, 2.0, 0.1}, reference, Eigen::Matrix3d::Zero(), 0.0, 0.0)));
 }
 
 TEST(Metrics, PosesBetweenSamplesAreInterpolated) {

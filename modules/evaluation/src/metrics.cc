@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -29,7 +30,10 @@ double normalisedErrorSquared(const io::Pose2D &estimate, const io::Pose2D &refe
   const Eigen::Matrix3d spread =
       covariance +
       Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad).asDiagonal().toDenseMatrix();
-  return error.dot(spread.ldlt().solve(error));
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(spread);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().minCoeff() > 0.0))
+    return std::numeric_limits<double>::infinity();
+  return error.dot(ldlt.solve(error));
 }
 
 namespace {

@@ -71,7 +71,8 @@ RelationErrors relationErrors(const io::Trajectory &estimate, const std::vector<
 /// (x, y and the yaw wrapped to [-pi, pi], both relative motions in one frame), C the
 /// estimate's covariance and F = diag(floor_m^2, floor_m^2, floor_rad^2) the reference's own
 /// error. An honest covariance of a motion in (x, y, yaw) gives a mean of 3, and 1 % of
-/// errors above kNees99 (chi-square, 3 degrees of freedom).
+/// errors above kNees99 (chi-square, 3 degrees of freedom). Infinite where C + F is singular
+/// (a zero covariance without a floor).
 constexpr double kNees99 = 11.34;
 double normalisedErrorSquared(const io::Pose2D &estimate, const io::Pose2D &reference,
                               const Eigen::Matrix3d &covariance, double floor_m, double floor_rad);
