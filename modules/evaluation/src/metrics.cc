@@ -31,7 +31,7 @@ double normalisedErrorSquared(const io::Pose2D &estimate, const io::Pose2D &refe
       covariance +
       Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad).asDiagonal().toDenseMatrix();
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(spread);
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().minCoeff() > 0.0))
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0.0))
     return std::numeric_limits<double>::infinity();
   return error.dot(ldlt.solve(error));
 }
