@@ -63,7 +63,6 @@ TEST(Odometry, StepsCarryTheChainedMotionAndAnHonestCovariance) {
     EXPECT_NEAR(chained.x, step.motion.x, 1e-9);
     EXPECT_EQ(step.covariance.llt().info(), Eigen::Success) << "step " << step.scan << ": no covariance";
     const io::Pose2D truth = io::between(s.truth[step.reference].pose, s.truth[step.scan].pose);
-    // With 1 cm / 0.2 deg for the simulated scans' own noise, inside the 99.9 % ellipsoid.
     EXPECT_LT(evaluation::normalisedErrorSquared(step.motion, truth, step.covariance, 0.01, 0.2 * M_PI / 180), 16.27)
         << "step " << step.scan;
   }
