@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace contour_reg {
 
@@ -74,18 +75,20 @@ void filterCorners(const EqualizedContour &contour, const CornerBank &bank, Corn
     if (norm_g <= 0.0) continue;
     const double scale = 1.0 / (norm_g * norm_t);
     const double eta_line = magnitude(arm1 + arm2) * scale;  // eq. (13): straight-line output
-    // The best bank element has the largest |arm1 + conj(arm2 reference) arm2|: found on the
-    // squares, one square root per vertex.
-    double best_square = -1.0;
+    // The best bank element c has the largest |arm1 + c arm2|^2 = |arm1|^2 + |arm2|^2 +
+    // 2 Re(c conj(arm1) arm2): the largest real part of c w, two products per element.
+    const Complex w = std::conj(arm1) * arm2;
+    double best_real = -std::numeric_limits<double>::infinity();
     const CornerBank::Element *best_element = nullptr;
     for (const CornerBank::Element &element : bank.elements) {
-      const double square = squaredMagnitude(arm1 + element.conj_arm2 * arm2);
-      if (square > best_square) {
-        best_square = square;
+      const double real = element.conj_arm2.real() * w.real() - element.conj_arm2.imag() * w.imag();
+      if (real > best_real) {
+        best_real = real;
         best_element = &element;
       }
     }
     if (best_element == nullptr) continue;
+    const double best_square = squaredMagnitude(arm1 + best_element->conj_arm2 * arm2);
     const double eta_corner = std::sqrt(best_square) * scale;  // eq. (12)
     const double best = eta_corner - eta_line;
     if (best <= 0.0) continue;
