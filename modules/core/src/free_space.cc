@@ -34,7 +34,7 @@ FreeSpaceEvidence &FreeSpaceEvidence::operator+=(const FreeSpaceEvidence &other)
 
 void RangeView::add(const Complex &point) {
   bearings_.push_back(approximateAtan2(point.imag(), point.real()));
-  ranges_.push_back(std::abs(point));
+  ranges_.push_back(magnitude(point));
 }
 
 void RangeView::assign(const ContourFeatures &scan) {
