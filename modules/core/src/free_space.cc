@@ -118,7 +118,7 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
       if (!in_run) return;
       double extent = 0.0;
       for (std::size_t k = run_start; k <= run_end; k += stride)
-        extent = std::max(extent, std::abs(points[k] - points[run_start]));
+        extent = std::max(extent, magnitude(points[k] - points[run_start]));
       if (extent > 0.0 && extent >= params.min_run_length) {
         evidence.contradicted_length += extent;
         ++evidence.contradicted_runs;

@@ -148,15 +148,15 @@ void findSpecialPoints(const ComplexSequence &raw_points, const EqualizedContour
     // Arm directions from the window's chords, refined by line fits to the raw points.
     Line arm1{contour.vertices[n - s], contour.vertices[n] - contour.vertices[n - s]};
     Line arm2{contour.vertices[n], contour.vertices[n + s] - contour.vertices[n]};
-    arm1.direction /= std::abs(arm1.direction);
-    arm2.direction /= std::abs(arm2.direction);
+    arm1.direction /= magnitude(arm1.direction);
+    arm2.direction /= magnitude(arm2.direction);
     if (params.refine_vertex) {
       Line fit1, fit2;
       Complex refined;
       const double margin = 0.5 * step, reach = s * step;
       if (fitArm(raw_points, arc, at, -1, margin, reach, params, fit1) &&
           fitArm(raw_points, arc, at, +1, margin, reach, params, fit2) && intersect(fit1, fit2, refined) &&
-          std::abs(refined - vertex) < 2.0 * step) {
+          magnitude(refined - vertex) < 2.0 * step) {
         vertex = refined;
         arm1 = fit1;
         arm2 = fit2;

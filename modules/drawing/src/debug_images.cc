@@ -116,7 +116,7 @@ cv::Mat drawDeskew(const LaserScan &scan, const SweepMotion &motion, const std::
     if (!isFinite(raw[n]) || !isFinite(deskewed[n])) continue;
     raw_points.push_back(toEigen(raw[n]));
     deskewed_points.push_back(toEigen(deskewed[n]));
-    largest_shift = std::max(largest_shift, std::abs(deskewed[n] - raw[n]));
+    largest_shift = std::max(largest_shift, magnitude(deskewed[n] - raw[n]));
   }
   std::vector<Eigen::Vector2d> all = raw_points;
   all.insert(all.end(), deskewed_points.begin(), deskewed_points.end());

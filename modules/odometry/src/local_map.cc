@@ -37,7 +37,7 @@ LaserScan renderLocalMap(const std::vector<MapKeyframe> &keyframes) {
     for (const Complex &point : code) {
       if (!isFinite(point)) continue;
       const Complex p = turn * point + shift;
-      const double range = std::abs(p);
+      const double range = magnitude(p);
       if (!map.isValidRange(range)) continue;
       long bin = std::lround((std::arg(p) - map.angle_min) / increment) % turn_of_beams;
       if (bin < 0) bin += turn_of_beams;

@@ -71,7 +71,7 @@ int nearestBeam(const ContourFeatures &features, const SpecialPoint &point) {
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   for (std::size_t n = 0; n < segment.points.size(); ++n) {
-    const double distance = std::norm(segment.points[n] - vertex);
+    const double distance = squaredMagnitude(segment.points[n] - vertex);
     if (distance < best_distance) {
       best_distance = distance;
       best = segment.beam_indices[n];
