@@ -56,6 +56,25 @@ TEST(FreeSpace, APersonWalkingThroughDoesNotRefuteTheRightMotion) {
   EXPECT_EQ(evidenceAt(source, target, truth).contradicted_length, 0.0);
 }
 
+// A wall in line with the source's beam: the source's beams pass along it, not through it, and
+// the target sees it broadside. The right motion puts the target's wall on the source's beam,
+// metres in front of that beam's return, yet the source never saw through the wall.
+TEST(FreeSpace, AWallSeenEdgeOnDoesNotRefuteTheRightMotion) {
+  simulation::World world;
+  world.addSegment({10.0, -6.0}, {10.0, 6.0});  // a back wall the beams along the side wall reach
+  world.addSegment({2.0, 0.0}, {6.0, 0.0});     // a side wall on the source's beam at bearing 0
+  const Eigen::Isometry2d target_pose = test::pose2d(0, -3, 0), source_pose = test::pose2d(0, 0, 0);
+  const ContourFeatures target = featuresFrom(world, target_pose, 1), source = featuresFrom(world, source_pose, 2);
+  const Eigen::Matrix3d truth = motionBetween(target_pose, source_pose);
+
+  const RangeView source_view(source);
+  EXPECT_NEAR(source_view.rangeAt(0.0), 10.0, 0.1);  // the source's beam passed along the side wall
+  const FreeSpaceEvidence along = freeSpaceEvidence(target, source_view, rigidInverse(truth), FreeSpaceParams{});
+  EXPECT_GT(along.tested_length, 3.0);        // the side wall was checked against the source's beams ...
+  EXPECT_EQ(along.contradicted_length, 0.0);  // ... and passes
+  EXPECT_EQ(evidenceAt(source, target, truth).contradicted_length, 0.0);
+}
+
 // The range view finds the returns that bracket a point by approximateAtan2, the index and the
 // query alike: that needs its stated bound and, for the order of bearings, monotonicity.
 TEST(FreeSpace, ApproximateBearingIsWithinItsBoundAndKeepsBearingOrder) {

@@ -130,7 +130,13 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
     };
     for (std::size_t n = 0; n < points.size(); n += stride) {
       const Eigen::Vector2d moved = rotation * Eigen::Vector2d(points[n].real(), points[n].imag()) + translation;
-      const RangeView::Sight sight = target_view.sightOf(moved, params.margin);
+      // The margin holds across the surface: along a beam that meets the contour at a glancing
+      // angle, a small offset of the contour moves the crossing far along the beam.
+      const Complex along = points[std::min(n + stride, points.size() - 1)] - points[n >= stride ? n - stride : 0];
+      const Eigen::Vector2d tangent = rotation * Eigen::Vector2d(along.real(), along.imag());
+      const double sine =
+          std::abs(tangent.x() * moved.y() - tangent.y() * moved.x()) / std::max(tangent.norm() * moved.norm(), 1e-12);
+      const RangeView::Sight sight = target_view.sightOf(moved, params.margin / std::max(sine, 1e-3));
       if (sight == RangeView::Sight::kNoEvidence) {
         closeRun();
         continue;

@@ -12,7 +12,9 @@
 ///
 /// The source's equalized contour is checked every 0.1 m; each point is compared with the two target beams that bracket
 /// their bearing and must lie clearly in front of the nearer of the two ranges (FreeSpaceParams::margin), so that a
-/// depth discontinuity between beams or a grazing wall does not contradict a right motion. Bearings where the target
+/// depth discontinuity between beams does not contradict a right motion. The margin is measured across the contour:
+/// along a beam that meets the contour at an angle a it is margin / sin(a), so a wall in line with the beam (the beam
+/// passed along it, not through it) never contradicts. Bearings where the target
 /// has no valid return (no echo, a gap between segments) give no evidence. A moving person, a door swung open between
 /// the scans contradict a right motion too, but only over a short stretch: contradicted runs shorter than
 /// `min_run_length` along the contour are not counted.
@@ -29,9 +31,10 @@ namespace contour_reg {
 struct FreeSpaceParams {
   /// Whether registration weighs free-space evidence when it decides between distinct motions.
   bool enabled = true;
-  /// m, how far in front of the other scan's measured range a point must lie to contradict:
-  /// above range noise and what a right motion's residual error moves a point (a turn of
-  /// 1 degree moves a point 30 m away by 0.5 m), below the offset of a distinct motion.
+  /// m, how far in front of the other scan's measured range a point must lie to contradict,
+  /// measured across its contour: above range noise and what a right motion's residual error
+  /// moves a point (a turn of 1 degree moves a point 30 m away by 0.5 m), below the offset of a
+  /// distinct motion.
   double margin = 0.5;
   /// m, contradicted stretches of contour shorter than this are not counted: a walking
   /// person (about 0.5 m across at the height of a LIDAR), a chair moved between the scans.
