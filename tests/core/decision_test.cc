@@ -95,6 +95,24 @@ TEST(Decision, PeopleWalkingThroughDoNotRefuteTheRightMotion) {
   EXPECT_LT(std::abs(errorOf(r, target, source).z()), 0.01);
 }
 
+// A 6 m partition stands in the source scan only, where the target saw across the room: the
+// right motion puts a tenth of the contours in the other scan's free space. The judge says the
+// scans contradict it rather than return it; without the free-space term it is returned.
+TEST(Decision, AMotionTheFreeSpaceContradictsIsDeclined) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  simulation::World partitioned = room;
+  partitioned.addBox({-3.0, -1.0}, {3.0, -0.9});
+  const Eigen::Isometry2d target = test::pose2d(0.0, 0.4, 10), source = test::pose2d(0.3, 0.5, 14);
+
+  const RegistrationResult r = registerPair(room, target, source, {}, &partitioned);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.status, RegistrationStatus::kContradicted) << r.reason;
+
+  const RegistrationResult without = registerPair(room, target, source, withoutFreeSpace(), &partitioned);
+  ASSERT_TRUE(without.converged) << without.reason;
+  EXPECT_LT(errorOf(without, target, source).head<2>().norm(), 0.02);
+}
+
 // A square room seen from its centre, turned 45 deg: turned -45 deg, the scan fits as well.
 TEST(Decision, ARivalThatScoresAsWellIsAmbiguous) {
   simulation::World square;

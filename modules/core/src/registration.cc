@@ -110,6 +110,8 @@ const char *toString(RegistrationStatus status) {
       return "unconstrained";
     case RegistrationStatus::kAmbiguous:
       return "ambiguous";
+    case RegistrationStatus::kContradicted:
+      return "contradicted";
   }
   return "unknown";
 }

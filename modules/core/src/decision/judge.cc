@@ -73,6 +73,15 @@ bool contradicted(Judged &found, Scorer &scorer) {
   return found.best.refined.overlap - scorer.score(found.best) > kScoreTie;
 }
 
+// Whether the free space contradicts the best by more than the tie; if so, `what` says how much.
+bool refuted(Judged &found, Scorer &scorer, std::string &what) {
+  if (!contradicted(found, scorer)) return false;
+  const FreeSpaceEvidence evidence = scorer.evidence(found.best.refined.transform);
+  what = std::to_string(static_cast<int>(std::lround(100 * evidence.fraction()))) +
+         " % of the contours it aligns, in " + std::to_string(evidence.contradicted_runs) + " stretches";
+  return true;
+}
+
 // Whether the best stands against the contours' own hypotheses (contourHypotheses: the guess,
 // single corner pairs, contour directions): none that refines to a distinct motion scores
 // within the tie of it. Searched only for a best that leaves room for such a rival:
@@ -155,6 +164,8 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
                ? ", but the other scan saw through part of it and the contours fit a distinct motion as well"
                : ", but they put only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
                      " % of the contour on the target and the contours fit a distinct motion as well";
+  std::string seen_through;
+  if (refuted(found, scorer, seen_through)) return ", but the other scan saw through " + seen_through;
   return {};
 }
 
@@ -174,6 +185,11 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
   if (found.ambiguous) {
     why = "refined on the contours, distinct motions fit equally well (repeated structure)";
     return RegistrationStatus::kAmbiguous;
+  }
+  std::string seen_through;
+  if (refuted(found, scorer, seen_through)) {
+    why = "refined on the contours, the other scan saw through " + seen_through;
+    return RegistrationStatus::kContradicted;
   }
   why.clear();
   return RegistrationStatus::kConverged;

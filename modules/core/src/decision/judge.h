@@ -11,7 +11,10 @@
 /// - unrivalled: no distinct motion scores within the tie, among the refined candidates and,
 ///   for a motion few corners decide, the contours' own answer from the guess; for a motion
 ///   the free space contradicts by more than the tie, among all the contours' hypotheses
-///   (generate.h) too: a rival as well supported and not contradicted would win outright.
+///   (generate.h) too: a rival as well supported and not contradicted would win outright;
+/// - not contradicted: it puts at most the tie's share of both contours in the other scan's
+///   free space. A best that nothing rivals but the scans contradict is no answer: the true
+///   motion was not among the candidates (a symmetric building seen after a large turn).
 /// Free-space evidence enters through the score: a rival that puts walls where the other scan
 /// looked through empty space scores lower and is no rival.
 
@@ -50,7 +53,7 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
                               RegistrationBuffers &buffers, Scorer &scorer);
 
 /// The verdict on the contours' own best motion when the corners did not decide: converged,
-/// low overlap, unconstrained or ambiguous, with the reason in `why`.
+/// low overlap, unconstrained, ambiguous or contradicted, with the reason in `why`.
 RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                                       Scorer &scorer, std::string &why);
 

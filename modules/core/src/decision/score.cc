@@ -11,8 +11,8 @@ double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
          std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
 }
 
-double Scorer::contradiction(const Eigen::Matrix3d &motion) {
-  if (!params_.enabled) return 0.0;
+FreeSpaceEvidence Scorer::evidence(const Eigen::Matrix3d &motion) {
+  if (!params_.enabled) return {};
   if (!views_ready_) {
     if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
       buffers_.target_view.assign(target_);
@@ -21,8 +21,7 @@ double Scorer::contradiction(const Eigen::Matrix3d &motion) {
     buffers_.source_view.assign(source_);
     views_ready_ = true;
   }
-  return mutualFreeSpaceEvidence(source_, buffers_.source_view, target_, buffers_.target_view, motion, params_)
-      .fraction();
+  return mutualFreeSpaceEvidence(source_, buffers_.source_view, target_, buffers_.target_view, motion, params_);
 }
 
 double Scorer::score(ScoredMotion &motion) {

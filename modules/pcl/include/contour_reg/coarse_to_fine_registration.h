@@ -21,7 +21,7 @@ namespace contour_reg {
 /// coarse answer by at most setMaxFineCorrection() (metres, radians): a larger correction
 /// means ICP fell into another minimum, and the coarse answer is kept (converged, flagged by
 /// fineStageRejected()). When the coarse stage's scans do not decide the motion
-/// (isUndecided(): too few special points or inliers, low overlap, unconstrained, ambiguous)
+/// (isUndecided(): too few special points or inliers, low overlap, unconstrained, ambiguous, contradicted)
 /// and setFineFromGuess(true) (the default), the fine stage runs from the guess alone and its
 /// own convergence is reported (fineFromGuess() tells); a local answer, right only when the
 /// guess was close. Invalid parameters end there: not converged, final transformation = guess.

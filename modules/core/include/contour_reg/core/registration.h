@@ -90,7 +90,7 @@ struct RegistrationParams {
 
 /// The verdict of a registration. The corners' verdicts come first; when the local fallback
 /// runs and finds no acceptable motion either, its verdict (low overlap, unconstrained,
-/// ambiguous) replaces theirs, and `reason` keeps both.
+/// ambiguous, contradicted) replaces theirs, and `reason` keeps both.
 enum class RegistrationStatus {
   kConverged,
   kInvalidParameters,
@@ -101,6 +101,7 @@ enum class RegistrationStatus {
   kLowOverlap,             ///< on the contours, the best motion puts too little of the source on the target
   kUnconstrained,          ///< on the contours, a direction stays weakly constrained (a corridor, a circle)
   kAmbiguous,              ///< on the contours, a distinct motion scores as well (repeated structure, symmetry)
+  kContradicted,           ///< the best motion puts contour where the other scan's beams saw through empty space
 };
 
 /// A motion the judge weighed and did not return, for pictures and diagnosis.
