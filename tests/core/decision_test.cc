@@ -96,19 +96,35 @@ TEST(Decision, PeopleWalkingThroughDoNotRefuteTheRightMotion) {
 }
 
 // A 6 m partition stands in the source scan only, where the target saw across the room: the
-// right motion puts a tenth of the contours in the other scan's free space. The judge says the
-// scans contradict it rather than return it; without the free-space term it is returned.
-TEST(Decision, AMotionTheFreeSpaceContradictsIsDeclined) {
+// right motion puts a tenth of the contours in the target's free space, but the source sees
+// through none of the target's contour. What one scan alone has does not refute a motion.
+TEST(Decision, AnObjectInOneScanOnlyDoesNotRefuteTheRightMotion) {
   const simulation::World room = simulation::makeFurnishedRoom();
   simulation::World partitioned = room;
   partitioned.addBox({-3.0, -1.0}, {3.0, -0.9});
   const Eigen::Isometry2d target = test::pose2d(0.0, 0.4, 10), source = test::pose2d(0.3, 0.5, 14);
 
   const RegistrationResult r = registerPair(room, target, source, {}, &partitioned);
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_LT(errorOf(r, target, source).head<2>().norm(), 0.02);
+}
+
+// The partition stands across the room in the target scan and 1 m in front of a wall in the source:
+// each scan saw through the other's partition, over a tenth of the contours. The judge says
+// the scans contradict the best motion rather than return it; without the free-space term it
+// is returned.
+TEST(Decision, AMotionBothScansContradictIsDeclined) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  simulation::World before = room, after = room;
+  before.addBox({-3.0, -1.0}, {3.0, -0.9});
+  after.addBox({-1.5, 4.0}, {4.5, 4.1});
+  const Eigen::Isometry2d target = test::pose2d(0.0, 0.4, 10), source = test::pose2d(0.3, 0.5, 14);
+
+  const RegistrationResult r = registerPair(before, target, source, {}, &after);
   EXPECT_FALSE(r.converged);
   EXPECT_EQ(r.status, RegistrationStatus::kContradicted) << r.reason;
 
-  const RegistrationResult without = registerPair(room, target, source, withoutFreeSpace(), &partitioned);
+  const RegistrationResult without = registerPair(before, target, source, withoutFreeSpace(), &after);
   ASSERT_TRUE(without.converged) << without.reason;
   EXPECT_LT(errorOf(without, target, source).head<2>().norm(), 0.02);
 }

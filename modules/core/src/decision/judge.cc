@@ -73,10 +73,16 @@ bool contradicted(Judged &found, Scorer &scorer) {
   return found.best.refined.overlap - scorer.score(found.best) > kScoreTie;
 }
 
-// Whether the free space contradicts the best by more than the tie; if so, `what` says how much.
+// Whether the free space refutes the best: it contradicts the best by more than the tie, and
+// each scan saw through some of the other's contour. A surface only one scan has (a car
+// parked or gone between the scans) contradicts the right motion one way only; a wrong motion
+// misplaces the surfaces of both. If refuted, `what` says how much.
 bool refuted(Judged &found, Scorer &scorer, std::string &what) {
   if (!contradicted(found, scorer)) return false;
-  const FreeSpaceEvidence evidence = scorer.evidence(found.best.refined.transform);
+  const auto [seen_by_target, seen_by_source] = scorer.evidenceEachWay(found.best.refined.transform);
+  if (seen_by_target.contradicted_runs == 0 || seen_by_source.contradicted_runs == 0) return false;
+  FreeSpaceEvidence evidence = seen_by_target;
+  evidence += seen_by_source;
   what = std::to_string(static_cast<int>(std::lround(100 * evidence.fraction()))) +
          " % of the contours it aligns, in " + std::to_string(evidence.contradicted_runs) + " stretches";
   return true;

@@ -13,8 +13,10 @@
 ///   the free space contradicts by more than the tie, among all the contours' hypotheses
 ///   (generate.h) too: a rival as well supported and not contradicted would win outright;
 /// - not contradicted: it puts at most the tie's share of both contours in the other scan's
-///   free space. A best that nothing rivals but the scans contradict is no answer: the true
-///   motion was not among the candidates (a symmetric building seen after a large turn).
+///   free space, or one scan sees through none of the other's contour (what one scan alone
+///   has, a car parked or gone between the scans, contradicts the right motion one way only).
+///   A best that nothing rivals but both scans contradict is no answer: the true motion was
+///   not among the candidates (a symmetric building seen after a large turn).
 /// Free-space evidence enters through the score: a rival that puts walls where the other scan
 /// looked through empty space scores lower and is no rival.
 

@@ -12,6 +12,12 @@ double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
 }
 
 FreeSpaceEvidence Scorer::evidence(const Eigen::Matrix3d &motion) {
+  const auto [seen_by_target, seen_by_source] = evidenceEachWay(motion);
+  FreeSpaceEvidence both = seen_by_target;
+  return both += seen_by_source;
+}
+
+std::pair<FreeSpaceEvidence, FreeSpaceEvidence> Scorer::evidenceEachWay(const Eigen::Matrix3d &motion) {
   if (!params_.enabled) return {};
   if (!views_ready_) {
     if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
@@ -21,7 +27,8 @@ FreeSpaceEvidence Scorer::evidence(const Eigen::Matrix3d &motion) {
     buffers_.source_view.assign(source_);
     views_ready_ = true;
   }
-  return mutualFreeSpaceEvidence(source_, buffers_.source_view, target_, buffers_.target_view, motion, params_);
+  return {freeSpaceEvidence(source_, buffers_.target_view, motion, params_),
+          freeSpaceEvidence(target_, buffers_.source_view, rigidInverse(motion), params_)};
 }
 
 double Scorer::score(ScoredMotion &motion) {

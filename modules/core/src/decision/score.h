@@ -47,6 +47,8 @@ class Scorer {
   double contradiction(const Eigen::Matrix3d &motion) { return evidence(motion).fraction(); }
   /// The free-space evidence of both scans against `motion` (none with free space off).
   FreeSpaceEvidence evidence(const Eigen::Matrix3d &motion);
+  /// The same, each way: the source's contour in the target's view, the target's in the source's.
+  std::pair<FreeSpaceEvidence, FreeSpaceEvidence> evidenceEachWay(const Eigen::Matrix3d &motion);
   /// Overlap less contradiction.
   double score(const RefinementResult &refined) { return refined.overlap - contradiction(refined.transform); }
   double score(ScoredMotion &motion);
