@@ -59,7 +59,8 @@ void bindRegistration(py::module_ &m) {
       .def_readonly("converged", &odometry::MatchResult::converged, "True when the method vouches for the transform")
       .def_property_readonly(
           "status", [](const odometry::MatchResult &r) { return r.converged ? std::string("converged") : r.status; },
-          "'converged', or the verdict: too_few_special_points, low_overlap, unconstrained, ambiguous, ...")
+          "'converged', or the verdict: too_few_special_points, low_overlap, unconstrained, ambiguous, contradicted, "
+          "...")
       .def_readonly("reason", &odometry::MatchResult::reason, "why not converged, in words ('' when converged)")
       .def_readonly("degenerate", &odometry::MatchResult::degenerate, "a direction of the motion is unconstrained")
       .def_property_readonly(

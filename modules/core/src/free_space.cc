@@ -131,7 +131,8 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
     for (std::size_t n = 0; n < points.size(); n += stride) {
       const Eigen::Vector2d moved = rotation * Eigen::Vector2d(points[n].real(), points[n].imag()) + translation;
       // The margin holds across the surface: along a beam that meets the contour at a glancing
-      // angle, a small offset of the contour moves the crossing far along the beam.
+      // angle, a small offset of the contour moves the crossing far along the beam. A sine
+      // below 1e-3 (a contour in line with the beam) makes the margin too wide to contradict.
       const Complex along = points[std::min(n + stride, points.size() - 1)] - points[n >= stride ? n - stride : 0];
       const Eigen::Vector2d tangent = rotation * Eigen::Vector2d(along.real(), along.imag());
       const double sine =

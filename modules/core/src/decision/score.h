@@ -9,6 +9,8 @@
 /// scan's seen-through space can. Motions whose scores differ by less than kScoreTie fit about
 /// as well; motions farther apart than kDistinctMotions (motionDistance) are distinct answers.
 
+#include <utility>
+
 #include <Eigen/Core>
 
 #include "contour_reg/core/contour_features.h"

@@ -52,7 +52,7 @@ namespace contour_reg {
 /// (FragmentDistance::kReal), the source fragments are first turned by the guess's yaw.
 ///
 /// Failure: hasConverged() is false, getResult().status names the verdict (too few special
-/// points, low overlap, unconstrained, ambiguous, ...; see RegistrationStatus) and
+/// points, low overlap, unconstrained, ambiguous, contradicted, ...; see RegistrationStatus) and
 /// getFailureReason() says it in words; the final transformation is the guess. An empty or
 /// all-NaN cloud is reported with PCL_ERROR. isDegenerate() flags converged estimates left
 /// unconstrained in some direction (a corridor or a single wall with fewer than three inlier
