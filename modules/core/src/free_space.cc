@@ -128,22 +128,27 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
       }
       in_run = false;
     };
-    for (std::size_t n = 0; n < points.size(); n += stride) {
-      const Eigen::Vector2d moved = rotation * Eigen::Vector2d(points[n].real(), points[n].imag()) + translation;
-      // The margin holds across the surface: along a beam that meets the contour at a glancing
-      // angle, a small offset of the contour moves the crossing far along the beam. A sine
-      // below 1e-3 (a contour in line with the beam) makes the margin too wide to contradict.
+    // The margin holds across the surface: along a beam that meets the contour at a glancing
+    // angle, a small offset of the contour moves the crossing far along the beam. A sine below
+    // 1e-3 (a contour in line with the beam) makes the margin too wide to contradict.
+    const auto marginAlongBeam = [&](std::size_t n, const Eigen::Vector2d &moved, double range) {
       const Complex along = points[std::min(n + stride, points.size() - 1)] - points[n >= stride ? n - stride : 0];
       const Eigen::Vector2d tangent = rotation * Eigen::Vector2d(along.real(), along.imag());
       const double sine =
-          std::abs(tangent.x() * moved.y() - tangent.y() * moved.x()) / std::max(tangent.norm() * moved.norm(), 1e-12);
-      const RangeView::Sight sight = target_view.sightOf(moved, params.margin / std::max(sine, 1e-3));
-      if (sight == RangeView::Sight::kNoEvidence) {
+          std::abs(tangent.x() * moved.y() - tangent.y() * moved.x()) / std::max(tangent.norm() * range, 1e-12);
+      return params.margin / std::max(sine, 1e-3);
+    };
+    for (std::size_t n = 0; n < points.size(); n += stride) {
+      const Eigen::Vector2d moved = rotation * Eigen::Vector2d(points[n].real(), points[n].imag()) + translation;
+      const double measured = target_view.rangeAt(approximateAtan2(moved.y(), moved.x()));
+      if (measured < 0.0) {  // no evidence at this bearing
         closeRun();
         continue;
       }
       evidence.tested_length += sample_length;
-      if (sight == RangeView::Sight::kSeenThrough) {
+      // Clearly in front of the measured range: by the margin along the beam, then across the contour.
+      const double range = moved.norm();
+      if (range < measured - params.margin && range < measured - marginAlongBeam(n, moved, range)) {
         if (!in_run) run_start = n;
         run_end = n;
         in_run = true;

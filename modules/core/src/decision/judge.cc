@@ -79,10 +79,10 @@ bool contradicted(Judged &found, Scorer &scorer) {
 // misplaces the surfaces of both. If refuted, `what` says how much.
 bool refuted(Judged &found, Scorer &scorer, std::string &what) {
   if (!contradicted(found, scorer)) return false;
+  // Computed again: only a best contradicted by more than the tie, rare, needs it each way.
   const auto [seen_by_target, seen_by_source] = scorer.evidenceEachWay(found.best.refined.transform);
   if (seen_by_target.contradicted_runs == 0 || seen_by_source.contradicted_runs == 0) return false;
-  FreeSpaceEvidence evidence = seen_by_target;
-  evidence += seen_by_source;
+  const FreeSpaceEvidence evidence = seen_by_target + seen_by_source;
   what = std::to_string(static_cast<int>(std::lround(100 * evidence.fraction()))) +
          " % of the contours it aligns, in " + std::to_string(evidence.contradicted_runs) + " stretches";
   return true;

@@ -11,10 +11,9 @@ double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
          std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
 }
 
-FreeSpaceEvidence Scorer::evidence(const Eigen::Matrix3d &motion) {
+double Scorer::contradiction(const Eigen::Matrix3d &motion) {
   const auto [seen_by_target, seen_by_source] = evidenceEachWay(motion);
-  FreeSpaceEvidence both = seen_by_target;
-  return both += seen_by_source;
+  return (seen_by_target + seen_by_source).fraction();
 }
 
 std::pair<FreeSpaceEvidence, FreeSpaceEvidence> Scorer::evidenceEachWay(const Eigen::Matrix3d &motion) {

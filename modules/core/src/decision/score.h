@@ -46,14 +46,13 @@ class Scorer {
       : source_(source), target_(target), params_(params), buffers_(buffers) {}
 
   /// The share of both contours `motion` puts in the other scan's free space (0 with free space off).
-  double contradiction(const Eigen::Matrix3d &motion) { return evidence(motion).fraction(); }
-  /// The free-space evidence of both scans against `motion` (none with free space off).
-  FreeSpaceEvidence evidence(const Eigen::Matrix3d &motion);
-  /// The same, each way: the source's contour in the target's view, the target's in the source's.
-  std::pair<FreeSpaceEvidence, FreeSpaceEvidence> evidenceEachWay(const Eigen::Matrix3d &motion);
+  double contradiction(const Eigen::Matrix3d &motion);
   /// Overlap less contradiction.
   double score(const RefinementResult &refined) { return refined.overlap - contradiction(refined.transform); }
   double score(ScoredMotion &motion);
+  /// The free-space evidence against `motion` each way: the source's contour in the target's
+  /// view, the target's in the source's (none with free space off).
+  std::pair<FreeSpaceEvidence, FreeSpaceEvidence> evidenceEachWay(const Eigen::Matrix3d &motion);
 
   const ContourFeatures &source() const { return source_; }
   const ContourFeatures &target() const { return target_; }

@@ -54,6 +54,9 @@ struct FreeSpaceEvidence {
   FreeSpaceEvidence &operator+=(const FreeSpaceEvidence &other);
 };
 
+/// Both pieces of evidence together.
+inline FreeSpaceEvidence operator+(FreeSpaceEvidence a, const FreeSpaceEvidence &b) { return a += b; }
+
 /// The target's view: the bearing and range of every point of its segments, by bearing.
 class RangeView {
  public:
