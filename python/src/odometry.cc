@@ -58,7 +58,8 @@ void bindOdometry(py::module_ &m) {
       .def_property_readonly("registrations", [](const odometry::OdometryRun &r) { return r.stats.registrations; })
       .def_property_readonly(
           "failures", [](const odometry::OdometryRun &r) { return r.stats.failures; },
-          "registrations that did not converge (bridged by the wheel odometry or the previous motion)")
+          "registrations that did not converge (bridged by the wheel odometry and the previous motion, weighted by "
+          "their record)")
       .def_property_readonly(
           "fused", [](const odometry::OdometryRun &r) { return r.stats.fused; },
           "registrations fused with the wheel odometry (guess 'odom', wheel_fusion)")

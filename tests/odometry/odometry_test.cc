@@ -275,6 +275,49 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhenItIsTheGuess) {
   EXPECT_LT(std::hypot(error.x, error.y), 0.02);
 }
 
+// The wheels measured the interval a failed registration leaves open; the previous motion only
+// extrapolates it. A scan lost just as the robot turns sharply, registered from a zero guess:
+// bridged by the wheels, it keeps the heading; by constant velocity, it would not turn at all.
+TEST(Odometry, WheelOdometryBridgesFailuresWhateverTheGuess) {
+  Sequence s = roomSequence(8, 0.0);
+  for (std::size_t k = 4; k < s.log.entries.size(); ++k) {
+    s.truth[k].pose.yaw += 0.5;  // the robot turns 29 deg on the spot between scans 3 and 4
+    s.log.entries[k].scan =
+        test::scanFrom(simulation::makeFurnishedRoom(),
+                       test::pose2d(s.truth[k].pose.x, s.truth[k].pose.y, s.truth[k].pose.yaw * 180.0 / M_PI), 0.0,
+                       100 + static_cast<int>(k));
+    s.log.entries[k].scan.stamp = s.truth[k].stamp;
+  }
+  for (std::size_t k = 0; k < s.log.entries.size(); ++k) s.log.entries[k].odometry = s.truth[k].pose;
+  for (float &r : s.log.entries[4].scan.ranges) r = std::nanf("");
+  auto matcher = makeScanMatcher("contour");
+  const OdometryRun run = runOdometry(s.log, *matcher);  // zero guess
+  EXPECT_EQ(run.stats.failures, 2u);                     // 3 -> 4 and 4 -> 5
+  const io::Pose2D error = io::between(io::between(s.truth[0].pose, s.truth[7].pose),
+                                       io::between(run.trajectory[0].pose, run.trajectory[7].pose));
+  EXPECT_LT(std::hypot(error.x, error.y), 0.05);
+  EXPECT_LT(std::abs(error.yaw), 0.02);
+}
+
+// Wheels that err by 0.2-0.3 rad a step on a smooth drive: the previous motion has predicted
+// the registrations better, and the failed scan is bridged by it, not by the wheels.
+TEST(Odometry, AFailedScanIsBridgedByThePredictionThatHasDoneBetter) {
+  Sequence s = roomSequence(10, 0.0);
+  for (std::size_t k = 0; k < s.log.entries.size(); ++k) {
+    io::Pose2D wheels = s.truth[k].pose;
+    wheels.yaw += 0.1 * static_cast<double>(k * 7 % 5);  // 0, 0.2, 0.4, 0.1, 0.3, 0, 0.2, 0.4, ...
+    s.log.entries[k].odometry = wheels;
+  }
+  for (float &r : s.log.entries[6].scan.ranges) r = std::nanf("");
+  auto matcher = makeScanMatcher("contour");
+  const OdometryRun run = runOdometry(s.log, *matcher);
+  EXPECT_EQ(run.stats.failures, 2u);  // 5 -> 6 and 6 -> 7
+  const io::Pose2D error = io::between(io::between(s.truth[0].pose, s.truth[9].pose),
+                                       io::between(run.trajectory[0].pose, run.trajectory[9].pose));
+  EXPECT_LT(std::abs(error.yaw), 0.03);
+  EXPECT_LT(std::hypot(error.x, error.y), 0.05);
+}
+
 // A bare corridor (walls beyond the LIDAR's reach at both ends) driven with a lane change and
 // noisy wheels: the scans pin the cross-axis position and the heading but not the position
 // along the axis. Fused, the trajectory keeps the wheels' motion along the axis and the scans'

@@ -35,6 +35,35 @@ Eigen::Matrix3d wheelMotionCovariance(const io::ScanLog &log, const io::LogEntry
   return log.laser_pose ? io::robotCovariance(covariance, robot, between(*log.laser_pose, io::Pose2D{})) : covariance;
 }
 
+// How well a prediction of the scan-to-scan motion has done so far: the mean squared error of
+// its predictions against the motions the registrations found, per component (x m, y m, yaw rad).
+struct PredictionRecord {
+  Eigen::Array3d squares = Eigen::Array3d::Zero();
+  int steps = 0;
+
+  void add(const io::Pose2D &predicted, const io::Pose2D &found) {
+    const io::Pose2D error = between(found, predicted);
+    squares += Eigen::Array3d(error.x * error.x, error.y * error.y, error.yaw * error.yaw);
+    ++steps;
+  }
+};
+
+// The motion over a failed registration's interval: the wheels' and the constant-velocity
+// prediction, component by component, each weighted by the inverse of its mean squared error
+// so far, so that whichever has predicted the registrations better decides (good wheels at a
+// slow LIDAR's turns, the last motion at a fast LIDAR's steps over slipping wheels). The wheels
+// alone until there is a record to weigh them by; the last motion alone without wheels.
+io::Pose2D bridge(const std::optional<io::Pose2D> &wheel, const PredictionRecord &by_wheel, const io::Pose2D &velocity,
+                  const PredictionRecord &by_velocity) {
+  if (!wheel) return velocity;
+  if (by_wheel.steps == 0 || by_velocity.steps == 0) return *wheel;
+  // Weight of the wheels, per component: 1/a over 1/a + 1/b is b over a + b.
+  const Eigen::Array3d a = by_wheel.squares / by_wheel.steps, b = by_velocity.squares / by_velocity.steps;
+  const Eigen::Array3d w = (a + b > 0.0).select(b / (a + b), 0.5);
+  return {velocity.x + w(0) * (wheel->x - velocity.x), velocity.y + w(1) * (wheel->y - velocity.y),
+          velocity.yaw + w(2) * std::remainder(wheel->yaw - velocity.yaw, 2.0 * M_PI)};
+}
+
 // The 99.9 % quantile of chi-square with 3 degrees of freedom, and with 2.
 constexpr double kChiSquare3 = 16.27, kChiSquare2 = 13.82;
 
@@ -149,6 +178,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   run.trajectory.push_back({entries[0].scan.stamp, poses[0]});
   io::Pose2D velocity_motion{};  // last scan-to-scan motion
   double velocity_dt = 0.0;
+  PredictionRecord wheel_record, velocity_record;  // the two predictions' errors on the converged steps
   std::size_t keyframe = 0;
   // Each scan's motion over its sweep, fixed when the scan is first matched; the first scan's
   // by the wheel odometry alone, when the log has it.
@@ -243,7 +273,11 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       run.stats.degenerate += match.status == "degenerate";
       ++run.stats.failure_reasons[match.status];
       run.stats.failed_scans.push_back(k);
-      pose = (options.guess == GuessSource::kOdometry && wheel) ? compose(previous, *wheel) : by_velocity;
+      pose = compose(previous, bridge(wheel, wheel_record, scaled(velocity_motion, velocity_scale), velocity_record));
+    }
+    if (match.converged && wheel) {
+      wheel_record.add(*wheel, between(previous, pose));
+      velocity_record.add(scaled(velocity_motion, velocity_scale), between(previous, pose));
     }
     poses.push_back(pose);
     run.trajectory.push_back({entries[k].scan.stamp, pose});

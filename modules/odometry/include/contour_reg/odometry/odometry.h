@@ -129,10 +129,12 @@ Twist2D twistOver(const io::Pose2D &motion, double dt);
 std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k);
 
 /// Runs odometry over `log` with `matcher`. A registration that fails is retried from the
-/// constant-velocity prediction (retry_with_velocity); one that fails again is never chained: the
-/// scan's pose comes from the wheel odometry when the log has it and the guess source is
-/// kOdometry, otherwise from the previous motion (constant velocity); it is counted in
-/// the stats.
+/// constant-velocity prediction (retry_with_velocity); one that fails again is never chained but
+/// bridged, and counted in the stats. The bridge combines the wheel odometry's increment (when
+/// the log has it, whatever the guess source) and the constant-velocity prediction, each
+/// weighted per component by the inverse of its mean squared error against the motions the
+/// registrations found so far; the wheels alone until both have a record, the prediction alone
+/// without wheels.
 OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const OdometryOptions &options = {});
 
 }  // namespace contour_reg::odometry
