@@ -50,9 +50,9 @@ struct PredictionRecord {
 
 // The motion over a failed registration's interval: the wheels' and the constant-velocity
 // prediction, component by component, each weighted by the inverse of its mean squared error
-// so far, so that whichever has predicted the registrations better decides (good wheels at a
-// slow LIDAR's turns, the last motion at a fast LIDAR's steps over slipping wheels). The wheels
-// alone until there is a record to weigh them by; the last motion alone without wheels.
+// so far, so that whichever has predicted the registrations better decides (the wheels through
+// a turn that a slow LIDAR's last motion misses, the last motion where the wheels slip). The
+// wheels alone until there is a record to weigh them by; the last motion alone without wheels.
 io::Pose2D bridge(const std::optional<io::Pose2D> &wheel, const PredictionRecord &by_wheel, const io::Pose2D &velocity,
                   const PredictionRecord &by_velocity) {
   if (!wheel) return velocity;
