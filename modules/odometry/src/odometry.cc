@@ -35,6 +35,9 @@ Eigen::Matrix3d wheelMotionCovariance(const io::ScanLog &log, const io::LogEntry
   return log.laser_pose ? io::robotCovariance(covariance, robot, between(*log.laser_pose, io::Pose2D{})) : covariance;
 }
 
+// The 99.9 % quantile of chi-square with 3 degrees of freedom, and with 2.
+constexpr double kChiSquare3 = 16.27, kChiSquare2 = 13.82;
+
 // How well a prediction of the scan-to-scan motion has done so far: the mean squared error of
 // its predictions against the motions the registrations found, per component (x m, y m, yaw rad).
 struct PredictionRecord {
@@ -50,22 +53,24 @@ struct PredictionRecord {
 
 // The motion over a failed registration's interval: the wheels' and the constant-velocity
 // prediction, component by component, each weighted by the inverse of its mean squared error
-// so far, so that whichever has predicted the registrations better decides (the wheels through
-// a turn that a slow LIDAR's last motion misses, the last motion where the wheels slip). The
-// wheels alone until there is a record to weigh them by; the last motion alone without wheels.
+// so far, so that whichever has predicted the registrations better decides (the last motion
+// where the wheels slip). Where the two differ by more than their errors allow, the motion
+// changed (a turn begun between a slow LIDAR's scans) and only the wheels measured it: the
+// wheels alone. The wheels alone, too, until there is a record to weigh them by; the last
+// motion alone without wheels.
 io::Pose2D bridge(const std::optional<io::Pose2D> &wheel, const PredictionRecord &by_wheel, const io::Pose2D &velocity,
                   const PredictionRecord &by_velocity) {
   if (!wheel) return velocity;
   if (by_wheel.steps == 0 || by_velocity.steps == 0) return *wheel;
-  // Weight of the wheels, per component: 1/a over 1/a + 1/b is b over a + b.
   const Eigen::Array3d a = by_wheel.squares / by_wheel.steps, b = by_velocity.squares / by_velocity.steps;
+  const Eigen::Array3d gap(wheel->x - velocity.x, wheel->y - velocity.y,
+                           std::remainder(wheel->yaw - velocity.yaw, 2.0 * M_PI));
+  // Apart by more than their records allow: chi-square with 3 degrees of freedom, 99.9 %.
+  if ((gap.square() / (a + b).max(1e-12)).sum() > kChiSquare3) return *wheel;
+  // Weight of the wheels, per component: 1/a over 1/a + 1/b is b over a + b.
   const Eigen::Array3d w = (a + b > 0.0).select(b / (a + b), 0.5);
-  return {velocity.x + w(0) * (wheel->x - velocity.x), velocity.y + w(1) * (wheel->y - velocity.y),
-          velocity.yaw + w(2) * std::remainder(wheel->yaw - velocity.yaw, 2.0 * M_PI)};
+  return {velocity.x + w(0) * gap(0), velocity.y + w(1) * gap(1), velocity.yaw + w(2) * gap(2)};
 }
-
-// The 99.9 % quantile of chi-square with 3 degrees of freedom, and with 2.
-constexpr double kChiSquare3 = 16.27, kChiSquare2 = 13.82;
 
 enum class Fused { kNo, kConverged, kPinned };
 

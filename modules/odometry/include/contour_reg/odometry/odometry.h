@@ -133,8 +133,9 @@ std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::siz
 /// bridged, and counted in the stats. The bridge combines the wheel odometry's increment (when
 /// the log has it, whatever the guess source) and the constant-velocity prediction, each
 /// weighted per component by the inverse of its mean squared error against the motions the
-/// registrations found so far; the wheels alone until both have a record, the prediction alone
-/// without wheels.
+/// registrations found so far. The wheels alone where the two differ beyond those errors (the
+/// motion changed: a turn the prediction cannot know) or until both have a record; the
+/// prediction alone without wheels.
 OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const OdometryOptions &options = {});
 
 }  // namespace contour_reg::odometry
