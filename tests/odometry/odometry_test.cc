@@ -36,6 +36,36 @@ Sequence roomSequence(int scans = 20, double noise = 0.01) {
   return s;
 }
 
+// The robot turns `yaw` rad on the spot just before scan `from`: the truth and the scans from
+// there on turn with it.
+void turnOnTheSpot(Sequence &s, std::size_t from, double yaw) {
+  for (std::size_t k = from; k < s.log.entries.size(); ++k) {
+    io::Pose2D &pose = s.truth[k].pose;
+    pose.yaw += yaw;
+    const double stamp = s.log.entries[k].scan.stamp;
+    s.log.entries[k].scan =
+        test::scanFrom(simulation::makeFurnishedRoom(), test::pose2d(pose.x, pose.y, pose.yaw * 180.0 / M_PI), 0.0,
+                       100 + static_cast<int>(k));
+    s.log.entries[k].scan.stamp = stamp;
+  }
+}
+
+// Wheel odometry at every scan: the truth, its yaw off by `yaw_error` times 0, 2, 4, 1, 3, 0, ...
+// so that each increment errs by 2 or 3 times `yaw_error`.
+void addWheels(Sequence &s, double yaw_error) {
+  for (std::size_t k = 0; k < s.log.entries.size(); ++k) {
+    io::Pose2D wheels = s.truth[k].pose;
+    wheels.yaw += yaw_error * static_cast<double>(k * 7 % 5);
+    s.log.entries[k].odometry = wheels;
+  }
+}
+
+// The error of the run's motion from scan 0 to scan k against the truth.
+io::Pose2D errorTo(const Sequence &s, const OdometryRun &run, std::size_t k) {
+  return io::between(io::between(s.truth[0].pose, s.truth[k].pose),
+                     io::between(run.trajectory[0].pose, run.trajectory[k].pose));
+}
+
 TEST(Odometry, ContourOdometryFollowsTheTrueTrajectory) {
   const Sequence s = roomSequence();
   auto matcher = makeScanMatcher("contour");
@@ -280,21 +310,13 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhenItIsTheGuess) {
 // bridged by the wheels, it keeps the heading; by constant velocity, it would not turn at all.
 TEST(Odometry, WheelOdometryBridgesFailuresWhateverTheGuess) {
   Sequence s = roomSequence(8, 0.0);
-  for (std::size_t k = 4; k < s.log.entries.size(); ++k) {
-    s.truth[k].pose.yaw += 0.5;  // the robot turns 29 deg on the spot between scans 3 and 4
-    s.log.entries[k].scan =
-        test::scanFrom(simulation::makeFurnishedRoom(),
-                       test::pose2d(s.truth[k].pose.x, s.truth[k].pose.y, s.truth[k].pose.yaw * 180.0 / M_PI), 0.0,
-                       100 + static_cast<int>(k));
-    s.log.entries[k].scan.stamp = s.truth[k].stamp;
-  }
-  for (std::size_t k = 0; k < s.log.entries.size(); ++k) s.log.entries[k].odometry = s.truth[k].pose;
+  turnOnTheSpot(s, 4, 0.5);  // 29 deg between scans 3 and 4
+  addWheels(s, 0.0);
   for (float &r : s.log.entries[4].scan.ranges) r = std::nanf("");
   auto matcher = makeScanMatcher("contour");
   const OdometryRun run = runOdometry(s.log, *matcher);  // zero guess
   EXPECT_EQ(run.stats.failures, 2u);                     // 3 -> 4 and 4 -> 5
-  const io::Pose2D error = io::between(io::between(s.truth[0].pose, s.truth[7].pose),
-                                       io::between(run.trajectory[0].pose, run.trajectory[7].pose));
+  const io::Pose2D error = errorTo(s, run, 7);
   EXPECT_LT(std::hypot(error.x, error.y), 0.05);
   EXPECT_LT(std::abs(error.yaw), 0.02);
 }
@@ -303,46 +325,28 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhateverTheGuess) {
 // the registrations better, and the failed scan is bridged by it, not by the wheels.
 TEST(Odometry, AFailedScanIsBridgedByThePredictionThatHasDoneBetter) {
   Sequence s = roomSequence(10, 0.0);
-  for (std::size_t k = 0; k < s.log.entries.size(); ++k) {
-    io::Pose2D wheels = s.truth[k].pose;
-    wheels.yaw += 0.1 * static_cast<double>(k * 7 % 5);  // 0, 0.2, 0.4, 0.1, 0.3, 0, 0.2, 0.4, ...
-    s.log.entries[k].odometry = wheels;
-  }
+  addWheels(s, 0.1);
   for (float &r : s.log.entries[6].scan.ranges) r = std::nanf("");
   auto matcher = makeScanMatcher("contour");
   const OdometryRun run = runOdometry(s.log, *matcher);
   EXPECT_EQ(run.stats.failures, 2u);  // 5 -> 6 and 6 -> 7
-  const io::Pose2D error = io::between(io::between(s.truth[0].pose, s.truth[9].pose),
-                                       io::between(run.trajectory[0].pose, run.trajectory[9].pose));
+  const io::Pose2D error = errorTo(s, run, 9);
   EXPECT_LT(std::abs(error.yaw), 0.03);
   EXPECT_LT(std::hypot(error.x, error.y), 0.05);
 }
 
-// The same smooth drive, wheels erring by up to 0.06 rad a step, and a 29 deg turn on the spot
+// The same smooth drive, wheels erring by 0.03-0.045 rad a step, and a 29 deg turn on the spot
 // where the scan is lost: the previous motion has predicted better so far, but the wheels'
 // increment and it disagree far beyond their records, a change of motion only the wheels saw.
 TEST(Odometry, AFailedScanInATurnIsBridgedByTheWheels) {
   Sequence s = roomSequence(10, 0.0);
-  for (std::size_t k = 6; k < s.log.entries.size(); ++k) {
-    s.truth[k].pose.yaw += 0.5;
-    s.log.entries[k].scan =
-        test::scanFrom(simulation::makeFurnishedRoom(),
-                       test::pose2d(s.truth[k].pose.x, s.truth[k].pose.y, s.truth[k].pose.yaw * 180.0 / M_PI), 0.0,
-                       100 + static_cast<int>(k));
-    s.log.entries[k].scan.stamp = s.truth[k].stamp;
-  }
-  for (std::size_t k = 0; k < s.log.entries.size(); ++k) {
-    io::Pose2D wheels = s.truth[k].pose;
-    wheels.yaw += 0.015 * static_cast<double>(k * 7 % 5);  // 0, 0.03, 0.06, 0.015, 0.045, 0, ...
-    s.log.entries[k].odometry = wheels;
-  }
+  turnOnTheSpot(s, 6, 0.5);
+  addWheels(s, 0.015);
   for (float &r : s.log.entries[6].scan.ranges) r = std::nanf("");
   auto matcher = makeScanMatcher("contour");
   const OdometryRun run = runOdometry(s.log, *matcher);
   EXPECT_EQ(run.stats.failures, 2u);  // 5 -> 6 and 6 -> 7
-  const io::Pose2D error = io::between(io::between(s.truth[0].pose, s.truth[9].pose),
-                                       io::between(run.trajectory[0].pose, run.trajectory[9].pose));
-  EXPECT_LT(std::abs(error.yaw), 0.1);
+  EXPECT_LT(std::abs(errorTo(s, run, 9).yaw), 0.1);
 }
 
 // A bare corridor (walls beyond the LIDAR's reach at both ends) driven with a lane change and

@@ -211,7 +211,8 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     // Where the scan is expected, by constant velocity and by wheel odometry.
     // The previous motion scaled to this interval; no prediction across stamp jumps.
     const double velocity_scale = velocity_dt > 1e-3 ? std::clamp(dt / velocity_dt, 0.0, 3.0) : 0.0;
-    const io::Pose2D by_velocity = compose(previous, scaled(velocity_motion, velocity_scale));
+    const io::Pose2D velocity_step = scaled(velocity_motion, velocity_scale);
+    const io::Pose2D by_velocity = compose(previous, velocity_step);
     const auto wheel = wheelMotion(log, entries[k - 1], entries[k]);
     io::Pose2D expected = previous;
     if (options.guess == GuessSource::kOdometry && wheel) expected = compose(previous, *wheel);
@@ -278,11 +279,12 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       run.stats.degenerate += match.status == "degenerate";
       ++run.stats.failure_reasons[match.status];
       run.stats.failed_scans.push_back(k);
-      pose = compose(previous, bridge(wheel, wheel_record, scaled(velocity_motion, velocity_scale), velocity_record));
+      pose = compose(previous, bridge(wheel, wheel_record, velocity_step, velocity_record));
     }
     if (match.converged && wheel) {
-      wheel_record.add(*wheel, between(previous, pose));
-      velocity_record.add(scaled(velocity_motion, velocity_scale), between(previous, pose));
+      const io::Pose2D found = between(previous, pose);
+      wheel_record.add(*wheel, found);
+      velocity_record.add(velocity_step, found);
     }
     poses.push_back(pose);
     run.trajectory.push_back({entries[k].scan.stamp, pose});
