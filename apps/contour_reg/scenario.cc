@@ -40,13 +40,15 @@ std::map<std::string, std::vector<Eigen::Vector2d>> readPathsFile(const std::str
 
 void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
   command
-      .add_option("--map", options.map, "office (built in) or a map: map_server YAML, or a PGM/PNG with --resolution")
+      .add_option("--map", options.map,
+                  "office or doors (built in: the door row, path line) or a map: map_server YAML, or a PGM/PNG with "
+                  "--resolution")
       ->capture_default_str()
       ->check(CLI::Validator(
           [](std::string &map) -> std::string {
-            return map == "office" || std::filesystem::exists(map) ? "" : map + ": no such file";
+            return map == "office" || map == "doors" || std::filesystem::exists(map) ? "" : map + ": no such file";
           },
-          "office or FILE"));
+          "office, doors or FILE"));
   command.add_option("--resolution", options.resolution, "Metres per pixel of a map image given without YAML")
       ->capture_default_str()
       ->check(positive());
@@ -74,10 +76,13 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
 
 Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::string> &names) {
   Scenario scenario;
-  const bool office = options.map == "office";
+  const bool office = options.map == "office", doors = options.map == "doors";
   if (office) {
     scenario.map_name = "office";
     scenario.world = simulation::makeOfficeWorld();
+  } else if (doors) {
+    scenario.map_name = "doors";
+    scenario.world = simulation::makeDoorRowWorld();
   } else {
     simulation::MapReadOptions read;
     read.resolution = options.resolution;
@@ -95,6 +100,9 @@ Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::str
       waypoints = found->second;
     } else if (office) {
       waypoints = simulation::officePath(name);
+    } else if (doors) {
+      waypoints = simulation::doorRowPath(name);
+      if (waypoints.empty()) throw io::ReadError("unknown path '" + name + "' in the door row (line)");
     } else {
       const auto shape = simulation::pathShape(name);
       if (shape.empty()) throw io::ReadError("unknown path '" + name + "' (S, L, Y, O)");

@@ -1,7 +1,7 @@
 #pragma once
 // The world and paths the simulate and experiment commands drive through: the built-in
-// office with its hand-placed paths, or a map file with the paths placed automatically or
-// read from a paths file.
+// office with its hand-placed paths, the built-in door row with its line, or a map file with
+// the paths placed automatically or read from a paths file.
 
 #include <map>
 #include <optional>
@@ -17,7 +17,7 @@
 namespace contour_reg::cli {
 
 struct ScenarioOptions {
-  std::string map = "office";  ///< "office" or a map file (.yaml, .pgm, .png)
+  std::string map = "office";  ///< "office", "doors" or a map file (.yaml, .pgm, .png)
   double resolution = 0.1;     ///< m per pixel of a map image without YAML
   std::string paths_file;      ///< lines "NAME x0 y0 x1 y1 ..." in map metres
   std::string lidar = "hokuyo";
@@ -33,7 +33,7 @@ struct ScenarioOptions {
 void addScenarioOptions(CLI::App &command, ScenarioOptions &options);
 
 struct Scenario {
-  std::string map_name;  ///< "office" or the map file's stem
+  std::string map_name;  ///< "office", "doors" or the map file's stem
   simulation::World world;
   std::map<std::string, std::vector<Eigen::Vector2d>> paths;  ///< by name
 };

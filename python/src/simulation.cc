@@ -42,6 +42,10 @@ simulation::SimulatedRun simulate(const std::string &path, double rate, const st
   if (map == "office") {
     world = simulation::makeOfficeWorld();
     if (route.empty()) route = simulation::officePath(path);
+  } else if (map == "doors") {
+    world = simulation::makeDoorRowWorld();
+    if (route.empty()) route = simulation::doorRowPath(path);
+    if (route.empty()) throw py::value_error("unknown path '" + path + "' in the door row (line)");
   } else {
     simulation::MapReadOptions read;
     read.resolution = resolution;
@@ -73,7 +77,8 @@ void bindSimulation(py::module_ &m) {
         py::arg("speed") = 0.5, py::arg("odometry_noise") = 0.02, py::arg("seed") = 1,
         py::arg("waypoints") = py::none(), py::arg("laser_pose") = py::none(),
         "Drives a robot with a LIDAR (hokuyo or ydlidar) at `rate` Hz and `speed` m/s along a path (S, L, Y, O, "
-        "line in the built-in office; S, L, Y, O placed automatically in a map file, map_server YAML or a PGM/PNG "
+        "line in the built-in office; line in the built-in door row, map 'doors'; S, L, Y, O placed automatically in a "
+        "map file, map_server YAML or a PGM/PNG "
         "of `resolution` m per pixel; or `waypoints`, N x 2 in map metres). motion: stop-and-go (the paper's) or "
         "continuous (every beam from where the robot is when it fires). laser_pose: (x m, y m, yaw rad) of the LIDAR "
         "on the robot (None: at its centre). Returns a SimulatedRun.");

@@ -181,6 +181,11 @@ expect_run(0 simulate --map office --paths-file ${WORK_DIR}/paths.txt --path sho
 file(WRITE ${WORK_DIR}/badpaths.txt "short 1 1 3\n")
 expect_run(2 simulate --paths-file ${WORK_DIR}/badpaths.txt --path short --out ${WORK_DIR}/short.clf)
 expect_match("${LAST_ERR}" "badpaths.txt:1:")
+# The built-in door row and its one path.
+expect_run(0 simulate --map doors --path line --rate 0.5 --lidar ydlidar --out ${WORK_DIR}/doors.clf)
+expect_match("${LAST_ERR}" "along path line \\(54.0 m\\) in doors")
+expect_run(2 simulate --map doors --path S --out ${WORK_DIR}/doors.clf)
+expect_match("${LAST_ERR}" "unknown path 'S' in the door row")
 expect_run(2 experiment --map ${WORK_DIR}/missing.yaml --out ${WORK_DIR}/experiment2)
 expect_match("${LAST_ERR}" "missing.yaml")
 

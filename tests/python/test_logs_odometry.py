@@ -121,6 +121,15 @@ def test_write_and_read_back(tmp_path, s_run):
     np.testing.assert_allclose(cr.read_tum(str(tmp_path / "gt.tum")), s_run.ground_truth, atol=1e-5)
 
 
+def test_the_door_row_has_its_line():
+    run = cr.simulate(path="line", map="doors", lidar="ydlidar", rate=0.5, speed=1.0)
+    assert run.path_length == pytest.approx(54.0)
+    assert len(run.log) == 28  # a scan every 2 m and at the end
+    np.testing.assert_allclose(run.ground_truth[:, 2], 1.2)  # along the corridor's axis
+    with pytest.raises(ValueError, match="in the door row"):
+        cr.simulate(path="L", map="doors")
+
+
 def test_bad_simulation_and_odometry_arguments_raise(bundled_log):
     with pytest.raises(ValueError, match="unknown path"):
         cr.simulate(path="Z")

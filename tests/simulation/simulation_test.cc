@@ -145,6 +145,45 @@ TEST(Paths, OfficePathsKeepClearOfObstacles) {
   }
 }
 
+TEST(DoorRow, ScansAWholeNumberOfPeriodsApartSeeTheSame) {
+  const World doors = makeDoorRowWorld();
+  LidarModel model = LidarModel::ydlidarX4();  // 10 m: neither end in sight from the middle
+  model.range_noise = 0.0;
+  model.dropout = 0.0;
+  std::mt19937 rng(1);
+  const auto scanAt = [&](double x) {
+    return simulateScan(doors, Eigen::Isometry2d(Eigen::Translation2d(x, 1.2)), model, rng);
+  };
+  const LaserScan here = scanAt(25.0), period_on = scanAt(25.0 + kDoorRowPeriod),
+                  two_on = scanAt(25.0 + 2.0 * kDoorRowPeriod), half_on = scanAt(25.0 + 0.5 * kDoorRowPeriod);
+  ASSERT_EQ(here.ranges.size(), period_on.ranges.size());
+  const auto apart = [](double a, double b) { return std::abs(a - b); };
+  double period_gap = 0.0, half_gap = 0.0;
+  int returns = 0;
+  for (std::size_t n = 0; n < here.ranges.size(); ++n) {
+    if (!std::isfinite(here.ranges[n])) continue;
+    ++returns;
+    period_gap =
+        std::max({period_gap, apart(period_on.ranges[n], here.ranges[n]), apart(two_on.ranges[n], here.ranges[n])});
+    half_gap = std::max(half_gap, apart(half_on.ranges[n], here.ranges[n]));
+  }
+  EXPECT_GT(returns, 300);
+  EXPECT_LT(period_gap, 1e-9);  // the same scan, beam for beam
+  EXPECT_GT(half_gap, 0.1);     // half a period on, the recesses are elsewhere
+  // The ends are in sight near them: a scan one period from the west end differs from the middle's.
+  const LaserScan near_end = scanAt(1.0 + kDoorRowPeriod), next = scanAt(1.0 + 2.0 * kDoorRowPeriod);
+  double end_gap = 0.0;
+  for (std::size_t n = 0; n < near_end.ranges.size(); ++n)
+    if (std::isfinite(near_end.ranges[n]) && std::isfinite(next.ranges[n]))
+      end_gap = std::max(end_gap, apart(near_end.ranges[n], next.ranges[n]));
+  EXPECT_GT(end_gap, 1.0);
+  // Its path keeps clear of the walls.
+  const auto line = doorRowPath("line");
+  ASSERT_EQ(line.size(), 2u);
+  for (const auto &pose : samplePath(line, 0.05)) ASSERT_GE(doors.clearance(pose.translation()), 1.0);
+  EXPECT_TRUE(doorRowPath("L").empty());
+}
+
 TEST(Paths, PlacementFindsRoomInAMapAndKeepsClearance) {
   // A 30 m x 20 m hall as an occupancy grid (walls one cell thick).
   const int width = 300, height = 200;

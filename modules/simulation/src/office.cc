@@ -78,4 +78,28 @@ World makeFurnishedRoom() {
   return world;
 }
 
+World makeDoorRowWorld() {
+  World world;
+  constexpr double kLength = 60.0, kWidth = 2.4, kDoor = 0.9, kDepth = 0.2;
+  world.addSegment(V(0.0, kWidth), V(kLength, kWidth));
+  world.addSegment(V(0.0, 0.0), V(0.0, kWidth));
+  world.addSegment(V(kLength, 0.0), V(kLength, kWidth));
+  // The south wall, broken by a recess every period.
+  double x = 0.0;
+  for (double door = 0.5 * kDoorRowPeriod; door + kDoor < kLength; door += kDoorRowPeriod) {
+    world.addSegment(V(x, 0.0), V(door, 0.0));
+    world.addSegment(V(door, 0.0), V(door, -kDepth));
+    world.addSegment(V(door, -kDepth), V(door + kDoor, -kDepth));
+    world.addSegment(V(door + kDoor, -kDepth), V(door + kDoor, 0.0));
+    x = door + kDoor;
+  }
+  world.addSegment(V(x, 0.0), V(kLength, 0.0));
+  return world;
+}
+
+std::vector<V> doorRowPath(const std::string &name) {
+  if (name == "line") return {V(3.0, 1.2), V(57.0, 1.2)};
+  return {};
+}
+
 }  // namespace contour_reg::simulation
