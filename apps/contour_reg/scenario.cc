@@ -46,7 +46,7 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
       ->capture_default_str()
       ->check(CLI::Validator(
           [](std::string &map) -> std::string {
-            return map == "office" || map == "doors" || std::filesystem::exists(map) ? "" : map + ": no such file";
+            return simulation::isBuiltInWorld(map) || std::filesystem::exists(map) ? "" : map + ": no such file";
           },
           "office, doors or FILE"));
   command.add_option("--resolution", options.resolution, "Metres per pixel of a map image given without YAML")
@@ -76,13 +76,10 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
 
 Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::string> &names) {
   Scenario scenario;
-  const bool office = options.map == "office", doors = options.map == "doors";
-  if (office) {
-    scenario.map_name = "office";
-    scenario.world = simulation::makeOfficeWorld();
-  } else if (doors) {
-    scenario.map_name = "doors";
-    scenario.world = simulation::makeDoorRowWorld();
+  const bool built_in = simulation::isBuiltInWorld(options.map);
+  if (built_in) {
+    scenario.map_name = options.map;
+    scenario.world = simulation::makeBuiltInWorld(options.map);
   } else {
     simulation::MapReadOptions read;
     read.resolution = options.resolution;
@@ -98,11 +95,10 @@ Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::str
       const auto found = from_file.find(name);
       if (found == from_file.end()) throw io::ReadError(options.paths_file + ": no path named '" + name + "'");
       waypoints = found->second;
-    } else if (office) {
-      waypoints = simulation::officePath(name);
-    } else if (doors) {
-      waypoints = simulation::doorRowPath(name);
-      if (waypoints.empty()) throw io::ReadError("unknown path '" + name + "' in the door row (line)");
+    } else if (built_in) {
+      waypoints = simulation::builtInPath(options.map, name);
+      if (waypoints.empty())
+        throw io::ReadError("unknown path '" + name + "' in " + simulation::builtInPathChoices(options.map));
     } else {
       const auto shape = simulation::pathShape(name);
       if (shape.empty()) throw io::ReadError("unknown path '" + name + "' (S, L, Y, O)");
@@ -110,7 +106,6 @@ Scenario loadScenario(const ScenarioOptions &options, const std::vector<std::str
       if (waypoints.empty())
         throw io::ReadError(options.map + ": path " + name + " fits nowhere in the map; give one with --paths-file");
     }
-    if (waypoints.empty()) throw io::ReadError("unknown path '" + name + "' (S, L, Y, O, line)");
     scenario.paths[name] = waypoints;
   }
   return scenario;

@@ -39,13 +39,10 @@ simulation::SimulatedRun simulate(const std::string &path, double rate, const st
       throw py::value_error("waypoints must be an N x 2 array of two points or more (m)");
     for (py::ssize_t n = 0; n < a.shape(0); ++n) route.emplace_back(a.at(n, 0), a.at(n, 1));
   }
-  if (map == "office") {
-    world = simulation::makeOfficeWorld();
-    if (route.empty()) route = simulation::officePath(path);
-  } else if (map == "doors") {
-    world = simulation::makeDoorRowWorld();
-    if (route.empty()) route = simulation::doorRowPath(path);
-    if (route.empty()) throw py::value_error("unknown path '" + path + "' in the door row (line)");
+  if (simulation::isBuiltInWorld(map)) {
+    world = simulation::makeBuiltInWorld(map);
+    if (route.empty()) route = simulation::builtInPath(map, path);
+    if (route.empty()) throw py::value_error("unknown path '" + path + "' in " + simulation::builtInPathChoices(map));
   } else {
     simulation::MapReadOptions read;
     read.resolution = resolution;
@@ -57,7 +54,6 @@ simulation::SimulatedRun simulate(const std::string &path, double rate, const st
       if (route.empty()) throw py::value_error(map + ": path " + path + " fits nowhere in the map; give waypoints");
     }
   }
-  if (route.empty()) throw py::value_error("unknown path '" + path + "' (S, L, Y, O, line)");
   py::gil_scoped_release release;
   return simulation::simulateRun(world, route, settings);
 }

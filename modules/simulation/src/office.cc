@@ -1,5 +1,8 @@
 #include "contour_reg/simulation/office.h"
 
+#include "contour_reg/simulation/paths.h"
+
+#include <string>
 #include <vector>
 
 namespace contour_reg::simulation {
@@ -100,6 +103,26 @@ World makeDoorRowWorld() {
 std::vector<V> doorRowPath(const std::string &name) {
   if (name == "line") return {V(3.0, 1.2), V(57.0, 1.2)};
   return {};
+}
+
+bool isBuiltInWorld(const std::string &map) { return map == "office" || map == "doors"; }
+
+World makeBuiltInWorld(const std::string &map) {
+  if (map == "office") return makeOfficeWorld();
+  if (map == "doors") return makeDoorRowWorld();
+  return {};
+}
+
+std::vector<V> builtInPath(const std::string &map, const std::string &name) {
+  if (map == "office") return officePath(name);
+  if (map == "doors") return doorRowPath(name);
+  return {};
+}
+
+std::string builtInPathChoices(const std::string &map) {
+  if (map == "office") return "the office (S, L, Y, O, line)";
+  if (map == "doors") return "the door row (line)";
+  return map;
 }
 
 }  // namespace contour_reg::simulation

@@ -34,4 +34,16 @@ World makeDoorRowWorld();
 /// The door row's one path, "line": along the corridor's axis from x = 3 to 57 (empty for any other name).
 std::vector<Eigen::Vector2d> doorRowPath(const std::string &name);
 
+/// Whether `map` names a built-in world: "office" (makeOfficeWorld) or "doors" (makeDoorRowWorld).
+bool isBuiltInWorld(const std::string &map);
+
+/// The built-in world `map` names; an empty world for any other name.
+World makeBuiltInWorld(const std::string &map);
+
+/// The path `name` of the built-in world `map` (officePath, doorRowPath); empty when it has none.
+std::vector<Eigen::Vector2d> builtInPath(const std::string &map, const std::string &name);
+
+/// The built-in world `map` and its paths, for messages: "the office (S, L, Y, O, line)".
+std::string builtInPathChoices(const std::string &map);
+
 }  // namespace contour_reg::simulation
