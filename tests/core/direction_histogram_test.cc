@@ -150,6 +150,8 @@ TEST(LocalFallback, CorridorWhoseAxisOnlyAStubConstrainsFailsTheProbes) {
   RegistrationParams without_probe;
   without_probe.min_special_points = 1 << 20;
   without_probe.probe_distance = 0.0;
+  // The free space's check for repeated structure finds the motion along the axis too: off.
+  without_probe.free_space.enabled = false;
   int wrong_without_probe = 0;
   for (double along : kAlongTheAxis) {
     SCOPED_TRACE(testing::Message() << along << " m along the corridor");
@@ -231,23 +233,61 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   EXPECT_FALSE(registerSeeded(source, target, RegistrationParams{}).converged);
 }
 
-TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffGoesToTheFallback) {
+TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffAlongARowOfDoorsIsAmbiguous) {
   // Recesses 0.2 m deep every 3 m, seen from 0.5 m further on: three door corners match one
-  // period off. Refined from the guess (none), the contours settle on the true motion and fit
-  // it at least as well, so the local fallback decides.
+  // period off. Refined from the guess (none), the contours settle on the true motion, but it
+  // and the motions a whole period off fit what both scans saw alike: no answer.
   const simulation::World corridor = corridorWithRecesses(0.2, 0.9, 3.0);
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.5, 0.05, 2), 9);
-  const RegistrationResult corners_alone = registerSeeded(source, target, withoutCornerChecks());
+  RegistrationParams unjudged = withoutCornerChecks();  // the corners' motion, the free space not weighed
+  unjudged.free_space.enabled = false;
+  const RegistrationResult corners_alone = registerSeeded(source, target, unjudged);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
   ASSERT_EQ(corners_alone.inliers.size(), 3u);
   EXPECT_NEAR(corners_alone.transform(0, 2), 0.5 - 3.0, 0.03);
 
   const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
-  ASSERT_TRUE(r.converged) << r.reason;
-  EXPECT_TRUE(r.from_local_fallback);
-  EXPECT_NEAR(r.transform(0, 2), 0.5, 0.03);
-  EXPECT_NEAR(r.transform(1, 2), 0.05, 0.03);
+  EXPECT_FALSE(r.converged) << r.transform;
+  EXPECT_EQ(r.status, RegistrationStatus::kAmbiguous) << r.reason;
+  EXPECT_NE(r.reason.find("a motion a period along repeated structure fits what both scans saw as well"),
+            std::string::npos)
+      << r.reason;
+}
+
+TEST(Repetition, TheEndOfARowOfDoorsTellsMotionsAPeriodApart) {
+  // The same row of doors closed by a wall 4.5 m ahead: only the true motion puts that wall
+  // where the target saw it.
+  simulation::World corridor = corridorWithRecesses(0.2, 0.9, 3.0);
+  corridor.addSegment({4.5, -1.4}, {4.5, 1.3});
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
+  for (double along : {0.5, 1.0, 2.0}) {
+    SCOPED_TRACE(testing::Message() << along << " m along the corridor");
+    const ContourFeatures source = featuresFrom(corridor, test::pose2d(along, 0.05, 2), 9);
+    const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
+    ASSERT_TRUE(r.converged) << r.reason;
+    EXPECT_NEAR(r.transform(0, 2), along, 0.03);
+    EXPECT_NEAR(r.transform(1, 2), 0.05, 0.03);
+  }
+}
+
+TEST(Repetition, MotionsAPeriodApartAlongAnOpenRowOfDoorsAreAmbiguous) {
+  // The row open at both ends: what the two scans saw does not tell the true motion from one a
+  // whole period off. Without the free space, the contours answer anyway.
+  const simulation::World corridor = corridorWithRecesses(0.2, 0.9, 3.0);
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
+  int converged_without_free_space = 0;
+  for (double along : {1.0, 3.5}) {
+    SCOPED_TRACE(testing::Message() << along << " m along the corridor");
+    const ContourFeatures source = featuresFrom(corridor, test::pose2d(along, 0.05, 2), 9);
+    const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
+    EXPECT_FALSE(r.converged) << r.transform;
+    EXPECT_EQ(r.status, RegistrationStatus::kAmbiguous) << r.reason;
+    RegistrationParams without_free_space;
+    without_free_space.free_space.enabled = false;
+    converged_without_free_space += registerSeeded(source, target, without_free_space).converged;
+  }
+  EXPECT_GT(converged_without_free_space, 0);
 }
 
 }  // namespace

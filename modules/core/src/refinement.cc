@@ -158,6 +158,10 @@ RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eig
   return refine(contourSamples(source, params.sample_step), initial, params);
 }
 
+bool ContourRefiner::pairs(const Eigen::Vector2d &point, double distance) const {
+  return index_->bearing.nearest(point, distance) >= 0;
+}
+
 RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &initial,
                                         const RefinementParams &params,
                                         const std::function<bool(const Eigen::Matrix3d &)> &arrived) const {

@@ -5,6 +5,7 @@
 #include "contour_reg/core/transform_estimation.h"
 #include "generate.h"
 #include "refine.h"
+#include "repetition.h"
 
 namespace contour_reg::decision {
 
@@ -114,6 +115,31 @@ bool standsAgainstContours(Judged &found, const RegistrationParams &params, cons
   return true;
 }
 
+// Whether the best stands against the motions a period of repeated structure off it
+// (repetition.h): none that refines to a distinct motion, contradicted no more than the best,
+// lays nearly as much of the view both share on the target contour. Weighed with the free
+// space only: what the target saw decides what the two share.
+bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
+                             Scorer &scorer) {
+  if (!params.free_space.enabled) return true;
+  const RefinementResult &best = found.best.refined;
+  std::vector<Eigen::Matrix3d> shifted;
+  periodShifts(best.transform, scorer.source(), scorer.target(), shifted);
+  if (shifted.empty()) return true;
+  const double against_best = best.overlap - scorer.score(found.best);
+  for (const Eigen::Matrix3d &start : shifted) {
+    const RefinementResult rival = buffers.refiner.refine(buffers.samples, start, params.refinement);
+    if (motionDistance(rival.transform, best.transform) <= kDistinctMotions) continue;
+    const double score = scorer.score(rival);
+    found.consider(rival, score);
+    if (rival.overlap - score > against_best + kScoreTie) continue;
+    const SharedViewFit fit = sharedViewFit(buffers.samples, buffers.refiner, scorer.targetView(), best.transform,
+                                            rival.transform, params.refinement.min_distance, params.free_space.margin);
+    if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void Judged::consider(const RefinementResult &motion, double score) {
@@ -172,6 +198,8 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
                      " % of the contour on the target and the contours fit a distinct motion as well";
   std::string seen_through;
   if (refuted(found, scorer, seen_through)) return ", but the other scan saw through " + seen_through;
+  if (!standsAgainstRepetition(found, params, buffers, scorer))
+    return ", and a motion a period along repeated structure fits what both scans saw as well";
   return {};
 }
 
@@ -196,6 +224,10 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
   if (refuted(found, scorer, seen_through)) {
     why = "refined on the contours, the other scan saw through " + seen_through;
     return RegistrationStatus::kContradicted;
+  }
+  if (!standsAgainstRepetition(found, params, buffers, scorer)) {
+    why = "refined on the contours, a motion a period along repeated structure fits what both scans saw as well";
+    return RegistrationStatus::kAmbiguous;
   }
   why.clear();
   return RegistrationStatus::kConverged;

@@ -18,16 +18,24 @@ double Scorer::contradiction(const Eigen::Matrix3d &motion) {
 
 std::pair<FreeSpaceEvidence, FreeSpaceEvidence> Scorer::evidenceEachWay(const Eigen::Matrix3d &motion) {
   if (!params_.enabled) return {};
-  if (!views_ready_) {
-    if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
-      buffers_.target_view.assign(target_);
-      buffers_.viewed_target = target_.extraction;
-    }
-    buffers_.source_view.assign(source_);
-    views_ready_ = true;
-  }
+  prepareViews();
   return {freeSpaceEvidence(source_, buffers_.target_view, motion, params_),
           freeSpaceEvidence(target_, buffers_.source_view, rigidInverse(motion), params_)};
+}
+
+void Scorer::prepareViews() {
+  if (views_ready_) return;
+  if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
+    buffers_.target_view.assign(target_);
+    buffers_.viewed_target = target_.extraction;
+  }
+  buffers_.source_view.assign(source_);
+  views_ready_ = true;
+}
+
+const RangeView &Scorer::targetView() {
+  prepareViews();
+  return buffers_.target_view;
 }
 
 double Scorer::score(ScoredMotion &motion) {

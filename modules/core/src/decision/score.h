@@ -54,6 +54,9 @@ class Scorer {
   /// view, the target's in the source's (none with free space off).
   std::pair<FreeSpaceEvidence, FreeSpaceEvidence> evidenceEachWay(const Eigen::Matrix3d &motion);
 
+  /// The target's view (built on first use, free space on or off).
+  const RangeView &targetView();
+
   const ContourFeatures &source() const { return source_; }
   const ContourFeatures &target() const { return target_; }
 
@@ -62,6 +65,7 @@ class Scorer {
   const FreeSpaceParams &params_;
   RegistrationBuffers &buffers_;
   bool views_ready_ = false;
+  void prepareViews();
 };
 
 }  // namespace contour_reg::decision

@@ -119,6 +119,9 @@ class ContourRefiner {
   RefinementResult refine(const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &initial,
                           const RefinementParams &params,
                           const std::function<bool(const Eigen::Matrix3d &)> &arrived = {}) const;
+  /// Whether the refinement would pair `point` (target frame) with a target contour vertex
+  /// within `distance` m.
+  bool pairs(const Eigen::Vector2d &point, double distance) const;
 
  private:
   struct Index;

@@ -1,0 +1,144 @@
+#include "repetition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "contour_reg/core/transform_estimation.h"
+#include "score.h"
+
+namespace contour_reg::decision {
+
+namespace {
+
+// m, spacing of the contour points that vote, and the width of a lag bin.
+constexpr double kVoteStep = 0.1;
+
+// A contour point that crosses the axis: its position along the axis (u) and across it (n).
+struct Crossing {
+  double along, across;
+};
+
+// The points of `scan`'s contours, moved by `motion`, every kVoteStep m, whose contour runs
+// more across the axis `u` than along it: door frames, corners, the ends of walls.
+void crossings(const ContourFeatures &scan, const Eigen::Matrix3d &motion, const Eigen::Vector2d &u,
+               std::vector<Crossing> &out) {
+  out.clear();
+  const Eigen::Matrix2d rotation = motion.topLeftCorner<2, 2>();
+  const Eigen::Vector2d translation = motion.topRightCorner<2, 1>();
+  const Eigen::Vector2d n(-u.y(), u.x());
+  for (const EqualizedContour &contour : scan.contours) {
+    if (contour.step <= 0.0 || contour.vertices.size() < 2) continue;
+    const auto stride = static_cast<std::size_t>(std::max(1.0, std::round(kVoteStep / contour.step)));
+    for (std::size_t r = 0; r < contour.vertices.size(); r += stride) {
+      const std::size_t a = r >= stride ? r - stride : 0, b = std::min(r + stride, contour.vertices.size() - 1);
+      const Eigen::Vector2d chord = rotation * toEigen(contour.vertices[b] - contour.vertices[a]);
+      if (std::abs(chord.dot(u)) >= std::abs(chord.dot(n))) continue;
+      const Eigen::Vector2d p = rotation * toEigen(contour.vertices[r]) + translation;
+      out.push_back({p.dot(u), p.dot(n)});
+    }
+  }
+}
+
+// The axis of `scan`'s contours: the mean of their elementary vectors' doubled angles, every
+// kVoteStep m (a corridor's axis). The vectors of an equalized contour are equally long.
+Eigen::Vector2d axisOf(const ContourFeatures &scan) {
+  Complex doubled = 0.0;
+  for (const EqualizedContour &contour : scan.contours) {
+    if (contour.step <= 0.0) continue;
+    const auto stride = static_cast<std::size_t>(std::max(1.0, std::round(kVoteStep / contour.step)));
+    for (std::size_t r = stride; r < contour.vertices.size(); r += stride) {
+      const Complex e = contour.vertices[r] - contour.vertices[r - 1];
+      doubled += e * e / (contour.step * contour.step);
+    }
+  }
+  const double angle = 0.5 * std::atan2(doubled.imag(), doubled.real());
+  return {std::cos(angle), std::sin(angle)};
+}
+
+}  // namespace
+
+void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, const ContourFeatures &target,
+                  std::vector<Eigen::Matrix3d> &shifted) {
+  shifted.clear();
+  const Eigen::Vector2d axis = axisOf(target);
+  std::vector<Crossing> from_source, from_target;
+  for (const Eigen::Vector2d &u : {axis, Eigen::Vector2d(-axis.y(), axis.x())}) {
+    crossings(source, best, u, from_source);
+    crossings(target, Eigen::Matrix3d::Identity(), u, from_target);
+    if (from_source.empty() || from_target.empty()) continue;
+    // Votes for each lag along u: pairs of crossings in the same lane across it.
+    std::sort(from_target.begin(), from_target.end(),
+              [](const Crossing &a, const Crossing &b) { return a.across < b.across; });
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto *set : {&from_source, &from_target})
+      for (const Crossing &c : *set) {
+        lo = std::min(lo, c.along);
+        hi = std::max(hi, c.along);
+      }
+    const int half = static_cast<int>(std::ceil((hi - lo) / kVoteStep)) + 1;
+    std::vector<double> votes(2 * half + 1, 0.0);
+    for (const Crossing &s : from_source) {
+      auto t = std::lower_bound(from_target.begin(), from_target.end(), s.across - kVoteStep,
+                                [](const Crossing &c, double v) { return c.across < v; });
+      for (; t != from_target.end() && t->across <= s.across + kVoteStep; ++t) {
+        const double lag = (t->along - s.along) / kVoteStep + half;
+        const int bin = static_cast<int>(lag);
+        if (bin < 0 || bin + 1 >= static_cast<int>(votes.size())) continue;
+        votes[bin] += bin + 1 - lag;  // shared between the two nearest bins
+        votes[bin + 1] += lag - bin;
+      }
+    }
+    // Lags voted for by about as many crossings as lag 0 (the best's own alignment): the
+    // distinct ones (beyond kDistinctMotions) that are local maxima, best first.
+    const auto window = [&](int b) {
+      double sum = 0.0;
+      for (int k = std::max(0, b - 1); k <= std::min<int>(votes.size() - 1, b + 1); ++k) sum += votes[k];
+      return sum;
+    };
+    const double aligned = window(half);
+    std::vector<std::pair<double, int>> peaks;
+    for (int b = 1; b + 1 < static_cast<int>(votes.size()); ++b) {
+      if (std::abs(b - half) * kVoteStep <= kDistinctMotions) continue;
+      const double w = window(b);
+      if (w >= kPeriodVotes * aligned && w >= window(b - 1) && w > window(b + 1)) peaks.push_back({w, b});
+    }
+    std::sort(peaks.begin(), peaks.end(), std::greater<>());
+    for (std::size_t k = 0; k < peaks.size() && k < kMaxPeriods; ++k) {
+      Eigen::Matrix3d motion = best;
+      motion.topRightCorner<2, 1>() += (peaks[k].second - half) * kVoteStep * u;
+      shifted.push_back(motion);
+    }
+  }
+}
+
+SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
+                            const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
+                            double on_contour, double hidden_margin) {
+  SharedViewFit fit;
+  if (samples.empty()) return fit;
+  // Whether the target saw the spot `point` (target frame): a return at its bearing, the point not behind it.
+  const auto seen = [&](const Eigen::Vector2d &point) {
+    const double measured = target_view.rangeAt(approximateAtan2(point.y(), point.x()));
+    return measured >= 0.0 && point.norm() <= measured + hidden_margin;
+  };
+  const auto move = [](const Eigen::Matrix3d &m, const Eigen::Vector2d &p) -> Eigen::Vector2d {
+    return m.topLeftCorner<2, 2>() * p + m.topRightCorner<2, 1>();
+  };
+  int shared = 0, on_first = 0, on_second = 0;
+  for (const Eigen::Vector2d &p : samples) {
+    const Eigen::Vector2d a = move(first, p), b = move(second, p);
+    if (!seen(a) || !seen(b)) continue;
+    ++shared;
+    on_first += refiner.pairs(a, on_contour);
+    on_second += refiner.pairs(b, on_contour);
+  }
+  fit.shared = static_cast<double>(shared) / static_cast<double>(samples.size());
+  if (shared > 0) {
+    fit.first = static_cast<double>(on_first) / shared;
+    fit.second = static_cast<double>(on_second) / shared;
+  }
+  return fit;
+}
+
+}  // namespace contour_reg::decision

@@ -1,0 +1,62 @@
+#pragma once
+/// @file repetition.h
+/// The judge's check for repeated structure: a motion a whole period off along a row of doors.
+///
+/// Along a row of equally spaced doors, the motion that lays the source's doors on the
+/// target's next doors fits as well as the true motion wherever both scans saw the same
+/// stretch of corridor. The overlap fraction cannot tell them apart fairly: the true motion
+/// moves the part of the source the target could not see (beyond its range, past its field of
+/// view) off the target's contour, the alias lays the whole scan on the whole scan. The check
+/// therefore compares the two on the shared view only.
+///
+/// - Period-shifted motions: along the target contour's axis (the mean direction of its
+///   elementary vectors, a corridor's axis) and across it, the contour points that run across
+///   that direction (door frames, corners, the ends of walls), of the source moved by the best
+///   and of the target, vote for the lag between them, pairs in the same lane only. A lag
+///   beyond kDistinctMotions that gathers at least kPeriodVotes of the votes of lag 0 (what
+///   the best itself aligns) and is a local maximum is a period of repeated structure, and the
+///   best shifted by it a candidate. Corners alone do not find periods: a door frame seen
+///   from another spot often yields other special points.
+/// - Shared view: the source samples the target could have seen under both motions, at a
+///   bearing where the target has a return and not hidden behind it (free_space.h's margin).
+/// - The best is rivalled when a shifted motion, refined, pairs nearly as large a share of the
+///   shared view (within kScoreTie) and the free space contradicts it no more than the best.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/free_space.h"
+#include "contour_reg/core/refinement.h"
+#include "contour_reg/core/registration.h"
+
+namespace contour_reg::decision {
+
+/// Periods kept at most along each of the two directions.
+constexpr std::size_t kMaxPeriods = 2;
+
+/// A lag is a period when its votes reach this share of the best's own (lag 0).
+constexpr double kPeriodVotes = 0.5;
+
+/// The best motion `best` shifted by each period of repeated structure (see above), the
+/// most voted first along each direction, into `shifted`.
+void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, const ContourFeatures &target,
+                  std::vector<Eigen::Matrix3d> &shifted);
+
+/// How two motions fit the part of the source both let the target see.
+struct SharedViewFit {
+  double shared = 0.0;  ///< share of the source samples the target sees under both motions
+  double first = 0.0;   ///< share of the shared samples the first motion lays on the target contour
+  double second = 0.0;  ///< the same for the second
+};
+
+/// The fit of `first` and `second` (source to target) on the shared view of the source
+/// `samples`: a sample lies on the target contour when the refiner pairs it within
+/// `on_contour` m; the target saw it when it has a return at its bearing and the sample lies
+/// no more than `hidden_margin` m behind that return.
+SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
+                            const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
+                            double on_contour, double hidden_margin);
+
+}  // namespace contour_reg::decision
