@@ -123,11 +123,10 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
                              Scorer &scorer) {
   if (!params.free_space.enabled) return true;
   const RefinementResult &best = found.best.refined;
-  std::vector<Eigen::Matrix3d> shifted;
-  periodShifts(best.transform, scorer.source(), scorer.target(), shifted);
-  if (shifted.empty()) return true;
+  periodShifts(best.transform, scorer.source(), scorer.target(), buffers.repetition);
+  if (buffers.repetition.shifted.empty()) return true;
   const double against_best = best.overlap - scorer.score(found.best);
-  for (const Eigen::Matrix3d &start : shifted) {
+  for (const Eigen::Matrix3d &start : buffers.repetition.shifted) {
     const RefinementResult rival = buffers.refiner.refine(buffers.samples, start, params.refinement);
     if (motionDistance(rival.transform, best.transform) <= kDistinctMotions) continue;
     const double score = scorer.score(rival);

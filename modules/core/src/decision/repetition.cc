@@ -14,15 +14,11 @@ namespace {
 // m, spacing of the contour points that vote, and the width of a lag bin.
 constexpr double kVoteStep = 0.1;
 
-// A contour point that crosses the axis: its position along the axis (u) and across it (n).
-struct Crossing {
-  double along, across;
-};
-
 // The points of `scan`'s contours, moved by `motion`, every kVoteStep m, whose contour runs
-// more across the axis `u` than along it: door frames, corners, the ends of walls.
+// more across the axis `u` than along it (door frames, corners, the ends of walls), as
+// (along u, across u).
 void crossings(const ContourFeatures &scan, const Eigen::Matrix3d &motion, const Eigen::Vector2d &u,
-               std::vector<Crossing> &out) {
+               std::vector<Eigen::Vector2d> &out) {
   out.clear();
   const Eigen::Matrix2d rotation = motion.topLeftCorner<2, 2>();
   const Eigen::Vector2d translation = motion.topRightCorner<2, 1>();
@@ -35,7 +31,7 @@ void crossings(const ContourFeatures &scan, const Eigen::Matrix3d &motion, const
       const Eigen::Vector2d chord = rotation * toEigen(contour.vertices[b] - contour.vertices[a]);
       if (std::abs(chord.dot(u)) >= std::abs(chord.dot(n))) continue;
       const Eigen::Vector2d p = rotation * toEigen(contour.vertices[r]) + translation;
-      out.push_back({p.dot(u), p.dot(n)});
+      out.emplace_back(p.dot(u), p.dot(n));
     }
   }
 }
@@ -59,30 +55,33 @@ Eigen::Vector2d axisOf(const ContourFeatures &scan) {
 }  // namespace
 
 void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, const ContourFeatures &target,
-                  std::vector<Eigen::Matrix3d> &shifted) {
+                  RegistrationBuffers::Repetition &scratch) {
+  std::vector<Eigen::Matrix3d> &shifted = scratch.shifted;
+  std::vector<Eigen::Vector2d> &from_source = scratch.source_crossings, &from_target = scratch.target_crossings;
+  std::vector<double> &votes = scratch.votes;
+  std::vector<std::pair<double, int>> &peaks = scratch.peaks;
   shifted.clear();
   const Eigen::Vector2d axis = axisOf(target);
-  std::vector<Crossing> from_source, from_target;
   for (const Eigen::Vector2d &u : {axis, Eigen::Vector2d(-axis.y(), axis.x())}) {
     crossings(source, best, u, from_source);
     crossings(target, Eigen::Matrix3d::Identity(), u, from_target);
     if (from_source.empty() || from_target.empty()) continue;
     // Votes for each lag along u: pairs of crossings in the same lane across it.
     std::sort(from_target.begin(), from_target.end(),
-              [](const Crossing &a, const Crossing &b) { return a.across < b.across; });
+              [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) { return a.y() < b.y(); });
     double lo = INFINITY, hi = -INFINITY;
     for (const auto *set : {&from_source, &from_target})
-      for (const Crossing &c : *set) {
-        lo = std::min(lo, c.along);
-        hi = std::max(hi, c.along);
+      for (const Eigen::Vector2d &c : *set) {
+        lo = std::min(lo, c.x());
+        hi = std::max(hi, c.x());
       }
     const int half = static_cast<int>(std::ceil((hi - lo) / kVoteStep)) + 1;
-    std::vector<double> votes(2 * half + 1, 0.0);
-    for (const Crossing &s : from_source) {
-      auto t = std::lower_bound(from_target.begin(), from_target.end(), s.across - kVoteStep,
-                                [](const Crossing &c, double v) { return c.across < v; });
-      for (; t != from_target.end() && t->across <= s.across + kVoteStep; ++t) {
-        const double lag = (t->along - s.along) / kVoteStep + half;
+    votes.assign(2 * half + 1, 0.0);
+    for (const Eigen::Vector2d &s : from_source) {
+      auto t = std::lower_bound(from_target.begin(), from_target.end(), s.y() - kVoteStep,
+                                [](const Eigen::Vector2d &c, double v) { return c.y() < v; });
+      for (; t != from_target.end() && t->y() <= s.y() + kVoteStep; ++t) {
+        const double lag = (t->x() - s.x()) / kVoteStep + half;
         const int bin = static_cast<int>(lag);
         if (bin < 0 || bin + 1 >= static_cast<int>(votes.size())) continue;
         votes[bin] += bin + 1 - lag;  // shared between the two nearest bins
@@ -97,11 +96,11 @@ void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, co
       return sum;
     };
     const double aligned = window(half);
-    std::vector<std::pair<double, int>> peaks;
+    peaks.clear();
     for (int b = 1; b + 1 < static_cast<int>(votes.size()); ++b) {
       if (std::abs(b - half) * kVoteStep <= kDistinctMotions) continue;
       const double w = window(b);
-      if (w >= kPeriodVotes * aligned && w >= window(b - 1) && w > window(b + 1)) peaks.push_back({w, b});
+      if (w >= kPeriodVotes * aligned && w >= window(b - 1) && w > window(b + 1)) peaks.emplace_back(w, b);
     }
     std::sort(peaks.begin(), peaks.end(), std::greater<>());
     for (std::size_t k = 0; k < peaks.size() && k < kMaxPeriods; ++k) {

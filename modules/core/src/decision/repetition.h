@@ -40,9 +40,9 @@ constexpr std::size_t kMaxPeriods = 2;
 constexpr double kPeriodVotes = 0.5;
 
 /// The best motion `best` shifted by each period of repeated structure (see above), the
-/// most voted first along each direction, into `shifted`.
+/// most voted first along each direction, into `scratch.shifted`.
 void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, const ContourFeatures &target,
-                  std::vector<Eigen::Matrix3d> &shifted);
+                  RegistrationBuffers::Repetition &scratch);
 
 /// How two motions fit the part of the source both let the target see.
 struct SharedViewFit {

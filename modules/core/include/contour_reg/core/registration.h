@@ -18,6 +18,7 @@
 #include <ostream>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -182,6 +183,14 @@ struct RegistrationBuffers {
   std::vector<Eigen::Vector2d> samples, sparse_samples;
   RangeView target_view, source_view;  ///< each scan's view, for free-space evidence
   std::uint64_t viewed_target = 0;     ///< extraction target_view shows (0: none)
+  /// Working memory of the judge's check for repeated structure: each scan's contour points
+  /// across an axis (along, across it), the votes per lag, the lags found and the motions they shift to.
+  struct Repetition {
+    std::vector<Eigen::Vector2d> source_crossings, target_crossings;
+    std::vector<double> votes;
+    std::vector<std::pair<double, int>> peaks;
+    std::vector<Eigen::Matrix3d> shifted;
+  } repetition;
 };
 
 /// Registers `source` onto `target`. `guess` (source to target), when given, is the
