@@ -96,7 +96,9 @@ double RangeView::rangeAt(double bearing) const {
 RangeView::Sight RangeView::sightOf(const Eigen::Vector2d &point, double margin) const {
   const double measured = rangeAt(approximateAtan2(point.y(), point.x()));
   if (measured < 0.0) return Sight::kNoEvidence;
-  return point.norm() < measured - margin ? Sight::kSeenThrough : Sight::kNotThrough;
+  const double range = point.norm();
+  if (range < measured - margin) return Sight::kSeenThrough;
+  return range > measured + margin ? Sight::kHidden : Sight::kNotThrough;
 }
 
 FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeView &target_view,

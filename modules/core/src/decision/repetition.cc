@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
 
 #include "contour_reg/core/transform_estimation.h"
 #include "score.h"
@@ -52,25 +53,39 @@ Eigen::Vector2d axisOf(const ContourFeatures &scan) {
   return {std::cos(angle), std::sin(angle)};
 }
 
+// The axis (k = 0) or the direction across it (k = 1).
+Eigen::Vector2d direction(const Eigen::Vector2d &axis, int k) {
+  return k == 0 ? axis : Eigen::Vector2d(-axis.y(), axis.x());
+}
+
 }  // namespace
 
 void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, const ContourFeatures &target,
                   RegistrationBuffers::Repetition &scratch) {
   std::vector<Eigen::Matrix3d> &shifted = scratch.shifted;
-  std::vector<Eigen::Vector2d> &from_source = scratch.source_crossings, &from_target = scratch.target_crossings;
+  std::vector<Eigen::Vector2d> &from_source = scratch.source_crossings;
   std::vector<double> &votes = scratch.votes;
   std::vector<std::pair<double, int>> &peaks = scratch.peaks;
   shifted.clear();
-  const Eigen::Vector2d axis = axisOf(target);
-  for (const Eigen::Vector2d &u : {axis, Eigen::Vector2d(-axis.y(), axis.x())}) {
+  // The target's side depends on the target alone: kept while it is the same extraction.
+  if (target.extraction == 0 || scratch.crossed_target != target.extraction) {
+    scratch.axis = axisOf(target);
+    for (int k = 0; k < 2; ++k) {
+      std::vector<Eigen::Vector2d> &points = scratch.target_crossings[k];
+      crossings(target, Eigen::Matrix3d::Identity(), direction(scratch.axis, k), points);
+      std::sort(points.begin(), points.end(),
+                [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) { return a.y() < b.y(); });
+    }
+    scratch.crossed_target = target.extraction;
+  }
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector2d u = direction(scratch.axis, k);
+    const std::vector<Eigen::Vector2d> &from_target = scratch.target_crossings[k];
     crossings(source, best, u, from_source);
-    crossings(target, Eigen::Matrix3d::Identity(), u, from_target);
     if (from_source.empty() || from_target.empty()) continue;
-    // Votes for each lag along u: pairs of crossings in the same lane across it.
-    std::sort(from_target.begin(), from_target.end(),
-              [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) { return a.y() < b.y(); });
+    // Votes for each lag along u: pairs of crossings in the same lane across it (the target's sorted across it).
     double lo = INFINITY, hi = -INFINITY;
-    for (const auto *set : {&from_source, &from_target})
+    for (const std::vector<Eigen::Vector2d> *set : {&std::as_const(from_source), &from_target})
       for (const Eigen::Vector2d &c : *set) {
         lo = std::min(lo, c.x());
         hi = std::max(hi, c.x());
@@ -118,8 +133,8 @@ SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const C
   if (samples.empty()) return fit;
   // Whether the target saw the spot `point` (target frame): a return at its bearing, the point not behind it.
   const auto seen = [&](const Eigen::Vector2d &point) {
-    const double measured = target_view.rangeAt(approximateAtan2(point.y(), point.x()));
-    return measured >= 0.0 && point.norm() <= measured + hidden_margin;
+    const RangeView::Sight sight = target_view.sightOf(point, hidden_margin);
+    return sight != RangeView::Sight::kNoEvidence && sight != RangeView::Sight::kHidden;
   };
   const auto move = [](const Eigen::Matrix3d &m, const Eigen::Vector2d &p) -> Eigen::Vector2d {
     return m.topLeftCorner<2, 2>() * p + m.topRightCorner<2, 1>();

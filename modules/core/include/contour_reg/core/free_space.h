@@ -71,9 +71,10 @@ class RangeView {
   /// returns, or a negative value where it has no evidence (outside its view, in a gap).
   double rangeAt(double bearing) const;
 
-  /// What the view says of a point (sensor frame): no evidence at its bearing, or whether the
-  /// scan's beam there passed more than `margin` m beyond it (saw through it).
-  enum class Sight { kNoEvidence, kNotThrough, kSeenThrough };
+  /// What the view says of a point (sensor frame): no evidence at its bearing, whether the
+  /// scan's beam there passed more than `margin` m beyond it (saw through it), or stopped more
+  /// than `margin` m before it (the point is hidden behind what the scan saw).
+  enum class Sight { kNoEvidence, kNotThrough, kSeenThrough, kHidden };
   Sight sightOf(const Eigen::Vector2d &point, double margin) const;
 
  private:

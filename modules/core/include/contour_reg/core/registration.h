@@ -183,10 +183,14 @@ struct RegistrationBuffers {
   std::vector<Eigen::Vector2d> samples, sparse_samples;
   RangeView target_view, source_view;  ///< each scan's view, for free-space evidence
   std::uint64_t viewed_target = 0;     ///< extraction target_view shows (0: none)
-  /// Working memory of the judge's check for repeated structure: each scan's contour points
-  /// across an axis (along, across it), the votes per lag, the lags found and the motions they shift to.
+  /// Working memory of the judge's check for repeated structure: the target's axis and its
+  /// contour points across the axis and across the perpendicular (along, across each), kept
+  /// while the target is the same extraction; the source's; the votes per lag, the lags found
+  /// and the motions they shift to.
   struct Repetition {
-    std::vector<Eigen::Vector2d> source_crossings, target_crossings;
+    std::uint64_t crossed_target = 0;  ///< extraction the target's axis and crossings are of (0: none)
+    Eigen::Vector2d axis = Eigen::Vector2d::UnitX();
+    std::vector<Eigen::Vector2d> target_crossings[2], source_crossings;
     std::vector<double> votes;
     std::vector<std::pair<double, int>> peaks;
     std::vector<Eigen::Matrix3d> shifted;
