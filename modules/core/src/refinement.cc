@@ -213,7 +213,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     const Eigen::Vector3d unit = arcUnits(result.rms_range);
     const Eigen::Matrix3d scaled_h = unit.asDiagonal() * h * unit.asDiagonal();
     const Eigen::Vector3d scaled_g = unit.asDiagonal() * g;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scaled_h);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    eigen.computeDirect(scaled_h);  // closed form for 3 x 3: scaled_h is in one unit, well scaled
     const Eigen::Vector3d values = eigen.eigenvalues();
     result.weakest_direction = unit.asDiagonal() * eigen.eigenvectors().col(0);
     Eigen::Vector3d step = Eigen::Vector3d::Zero();

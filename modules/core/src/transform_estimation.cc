@@ -43,17 +43,25 @@ bool estimateRigid(const Points2D &source, const Points2D &target, Eigen::Matrix
     dot += p.dot(q);
     cross += p.x() * q.y() - p.y() * q.x();
   }
-  if (std::hypot(dot, cross) < 1e-12) return false;  // all points coincide
-  const double yaw = std::atan2(cross, dot);
-  const Eigen::Rotation2Dd rotation(yaw);
-  const Eigen::Vector2d translation = mean_q - rotation * mean_p;
-  transform = rigidTransform(translation.x(), translation.y(), yaw);
+  const double norm = std::hypot(dot, cross);
+  if (norm < 1e-12) return false;  // all points coincide
+  // The rotation's cosine and sine are dot and cross, normalised: no angle needed.
+  Eigen::Matrix2d rotation;
+  rotation << dot / norm, -cross / norm, cross / norm, dot / norm;
+  transform.setIdentity();
+  transform.topLeftCorner<2, 2>() = rotation;
+  transform.topRightCorner<2, 1>() = mean_q - rotation * mean_p;
   return true;
 }
 
 Eigen::Matrix3d rigidPart(const Eigen::Matrix3d &affine) {
-  const double yaw = std::atan2(affine(1, 0) - affine(0, 1), affine(0, 0) + affine(1, 1));
-  return rigidTransform(affine(0, 2), affine(1, 2), yaw);
+  // The rotation nearest the linear part: (a00 + a11, a10 - a01), normalised, is its cosine and sine.
+  const double c = affine(0, 0) + affine(1, 1), s = affine(1, 0) - affine(0, 1), norm = std::hypot(c, s);
+  if (norm == 0.0) return rigidTransform(affine(0, 2), affine(1, 2), 0.0);
+  Eigen::Matrix3d rigid = Eigen::Matrix3d::Identity();
+  rigid.topLeftCorner<2, 2>() << c / norm, -s / norm, s / norm, c / norm;
+  rigid.topRightCorner<2, 1>() = affine.topRightCorner<2, 1>();
+  return rigid;
 }
 
 Eigen::Matrix3d rigidTransform(double x, double y, double yaw) {
