@@ -131,21 +131,31 @@ SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const C
                             double on_contour, double hidden_margin) {
   SharedViewFit fit;
   if (samples.empty()) return fit;
-  // Whether the target saw the spot `point` (target frame): a return at its bearing, the point not behind it.
-  const auto seen = [&](const Eigen::Vector2d &point) {
+  // Whether a point (target frame) lies on the target contour, and whether the target saw its
+  // spot: on its contour, or a return at its bearing with the point not behind it. Between two
+  // returns the view takes the nearer, so a point on a wall the beams meet at a glancing angle
+  // may lie behind it and still be on the contour the target measured.
+  struct Spot {
+    bool on_contour, seen;
+  };
+  const auto spot = [&](const Eigen::Vector2d &point) {
+    const bool on = refiner.pairs(point, on_contour);
+    if (on) return Spot{true, true};
     const RangeView::Sight sight = target_view.sightOf(point, hidden_margin);
-    return sight != RangeView::Sight::kNoEvidence && sight != RangeView::Sight::kHidden;
+    return Spot{false, sight != RangeView::Sight::kNoEvidence && sight != RangeView::Sight::kHidden};
   };
   const auto move = [](const Eigen::Matrix3d &m, const Eigen::Vector2d &p) -> Eigen::Vector2d {
     return m.topLeftCorner<2, 2>() * p + m.topRightCorner<2, 1>();
   };
   int shared = 0, on_first = 0, on_second = 0;
   for (const Eigen::Vector2d &p : samples) {
-    const Eigen::Vector2d a = move(first, p), b = move(second, p);
-    if (!seen(a) || !seen(b)) continue;
+    const Spot a = spot(move(first, p));
+    if (!a.seen) continue;
+    const Spot b = spot(move(second, p));
+    if (!b.seen) continue;
     ++shared;
-    on_first += refiner.pairs(a, on_contour);
-    on_second += refiner.pairs(b, on_contour);
+    on_first += a.on_contour;
+    on_second += b.on_contour;
   }
   fit.shared = static_cast<double>(shared) / static_cast<double>(samples.size());
   if (shared > 0) {

@@ -17,8 +17,9 @@
 ///   the best itself aligns) and is a local maximum is a period of repeated structure, and the
 ///   best shifted by it a candidate. Corners alone do not find periods: a door frame seen
 ///   from another spot often yields other special points.
-/// - Shared view: the source samples the target could have seen under both motions, at a
-///   bearing where the target has a return and not hidden behind it (free_space.h's margin).
+/// - Shared view: the source samples the target could have seen under both motions: on the
+///   target contour, or at a bearing where the target has a return and not hidden behind it
+///   (free_space.h's margin).
 /// - The best is rivalled when a shifted motion, refined, pairs nearly as large a share of the
 ///   shared view (within kScoreTie) and the free space contradicts it no more than the best.
 
@@ -53,8 +54,8 @@ struct SharedViewFit {
 
 /// The fit of `first` and `second` (source to target) on the shared view of the source
 /// `samples`: a sample lies on the target contour when the refiner pairs it within
-/// `on_contour` m; the target saw it when it has a return at its bearing and the sample lies
-/// no more than `hidden_margin` m behind that return.
+/// `on_contour` m; the target saw it when it lies on the target contour, or when the target
+/// has a return at its bearing and the sample lies no more than `hidden_margin` m behind it.
 SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
                             const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
                             double on_contour, double hidden_margin);
