@@ -45,6 +45,21 @@ TEST(TransformEstimation, RigidPartOfARotationIsItself) {
   EXPECT_NEAR(yawOf(rigid), -2.5, 1e-12);
 }
 
+TEST(TransformEstimation, RigidPartOfAnAffineMapIsTheNearestRotation) {
+  // R diag(a, b) = R P with P symmetric and positive: its polar decomposition, whose rotation
+  // is the nearest in Frobenius norm. The translation is kept.
+  const Eigen::Matrix3d rotation = rigidTransform(0.0, 0.0, 2.2);
+  Eigen::Matrix3d affine = Eigen::Matrix3d::Identity();
+  affine.topLeftCorner<2, 2>() = rotation.topLeftCorner<2, 2>() * Eigen::Vector2d(1.3, 0.6).asDiagonal();
+  affine.topRightCorner<2, 1>() = Eigen::Vector2d(-0.4, 3.0);
+  EXPECT_TRUE(rigidPart(affine).isApprox(rigidTransform(-0.4, 3.0, 2.2), 1e-12)) << rigidPart(affine);
+  // No linear part: no rotation to take, the identity's.
+  Eigen::Matrix3d flat = Eigen::Matrix3d::Identity();
+  flat.topLeftCorner<2, 2>().setZero();
+  flat(0, 2) = 1.0;
+  EXPECT_TRUE(rigidPart(flat).isApprox(rigidTransform(1.0, 0.0, 0.0), 1e-12)) << rigidPart(flat);
+}
+
 class RansacTest : public ::testing::TestWithParam<TransformModel> {};
 
 TEST_P(RansacTest, FindsTheMotionAmongOutliersRepeatably) {
