@@ -172,7 +172,7 @@ FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const R
   evidence += freeSpaceEvidence(target, source_view, rigidInverse(motion), params, contradicted);
   if (contradicted)  // the target's points were moved into the source frame: back into their own
     for (std::size_t k = first_target_point; k < contradicted->size(); ++k)
-      (*contradicted)[k] = motion.topLeftCorner<2, 2>() * (*contradicted)[k] + motion.topRightCorner<2, 1>();
+      (*contradicted)[k] = transformPoint(motion, (*contradicted)[k]);
   return evidence;
 }
 

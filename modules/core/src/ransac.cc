@@ -14,10 +14,6 @@ namespace {
 
 double angleDifference(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * M_PI)); }
 
-Eigen::Vector2d apply(const Eigen::Matrix3d &h, const Eigen::Vector2d &p) {
-  return h.topLeftCorner<2, 2>() * p + h.topRightCorner<2, 1>();
-}
-
 // Fits the model; an affine map must stay close to a rigid one.
 bool fit(const RansacParams &params, const Points2D &source, const Points2D &target, Eigen::Matrix3d &transform) {
   if (params.model == TransformModel::kRigid) return estimateRigid(source, target, transform);
@@ -37,7 +33,7 @@ std::size_t countInliers(const Eigen::Matrix3d &transform, const Points2D &sourc
   squared_error = 0.0;
   const double t2 = threshold * threshold;
   for (std::size_t i = 0; i < source.size(); ++i) {
-    const double e2 = (apply(transform, source[i]) - target[i]).squaredNorm();
+    const double e2 = (transformPoint(transform, source[i]) - target[i]).squaredNorm();
     if (e2 < t2) {
       ++count;
       squared_error += e2;
@@ -53,7 +49,7 @@ double listInliers(const Eigen::Matrix3d &transform, const Points2D &source, con
   double squared_error = 0.0;
   const double t2 = threshold * threshold;
   for (std::size_t i = 0; i < source.size(); ++i) {
-    const double e2 = (apply(transform, source[i]) - target[i]).squaredNorm();
+    const double e2 = (transformPoint(transform, source[i]) - target[i]).squaredNorm();
     if (e2 < t2) {
       inliers.push_back(static_cast<int>(i));
       squared_error += e2;

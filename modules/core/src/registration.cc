@@ -34,8 +34,7 @@ std::vector<Correspondence> gateByGuess(const std::vector<Correspondence> &pairs
   std::vector<Correspondence> kept;
   const double yaw = yawOf(guess);
   for (const Correspondence &c : pairs) {
-    const Eigen::Vector2d predicted =
-        guess.topLeftCorner<2, 2>() * source[c.source].position + guess.topRightCorner<2, 1>();
+    const Eigen::Vector2d predicted = transformPoint(guess, source[c.source].position);
     if ((predicted - target[c.target].position).norm() > params.guess_max_distance) continue;
     if (check_rotation && std::abs(std::remainder(c.rotation - yaw, 2 * M_PI)) > params.guess_max_rotation) continue;
     kept.push_back(c);

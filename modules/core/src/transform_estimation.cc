@@ -6,6 +6,18 @@
 
 namespace contour_reg {
 
+namespace {
+
+// The rigid transform of rotation (cos, sin) = (c, s) and translation t.
+Eigen::Matrix3d rotationFrom(double c, double s, const Eigen::Vector2d &t) {
+  Eigen::Matrix3d rigid = Eigen::Matrix3d::Identity();
+  rigid.topLeftCorner<2, 2>() << c, -s, s, c;
+  rigid.topRightCorner<2, 1>() = t;
+  return rigid;
+}
+
+}  // namespace
+
 // Eq. (17): the normal equations of x' = a x + b y + c, y' = d x + e y + f. Both rows
 // share the matrix M = sum [x y 1]^T [x y 1].
 bool estimateAffine(const Points2D &source, const Points2D &target, Eigen::Matrix3d &transform) {
@@ -46,30 +58,20 @@ bool estimateRigid(const Points2D &source, const Points2D &target, Eigen::Matrix
   const double norm = std::hypot(dot, cross);
   if (norm < 1e-12) return false;  // all points coincide
   // The rotation's cosine and sine are dot and cross, normalised: no angle needed.
-  Eigen::Matrix2d rotation;
-  rotation << dot / norm, -cross / norm, cross / norm, dot / norm;
-  transform.setIdentity();
-  transform.topLeftCorner<2, 2>() = rotation;
-  transform.topRightCorner<2, 1>() = mean_q - rotation * mean_p;
+  transform = rotationFrom(dot / norm, cross / norm, Eigen::Vector2d::Zero());
+  transform.topRightCorner<2, 1>() = mean_q - transform.topLeftCorner<2, 2>() * mean_p;
   return true;
 }
 
 Eigen::Matrix3d rigidPart(const Eigen::Matrix3d &affine) {
   // The rotation nearest the linear part: (a00 + a11, a10 - a01), normalised, is its cosine and sine.
   const double c = affine(0, 0) + affine(1, 1), s = affine(1, 0) - affine(0, 1), norm = std::hypot(c, s);
-  if (norm == 0.0) return rigidTransform(affine(0, 2), affine(1, 2), 0.0);
-  Eigen::Matrix3d rigid = Eigen::Matrix3d::Identity();
-  rigid.topLeftCorner<2, 2>() << c / norm, -s / norm, s / norm, c / norm;
-  rigid.topRightCorner<2, 1>() = affine.topRightCorner<2, 1>();
-  return rigid;
+  const Eigen::Vector2d translation = affine.topRightCorner<2, 1>();
+  return norm == 0.0 ? rotationFrom(1.0, 0.0, translation) : rotationFrom(c / norm, s / norm, translation);
 }
 
 Eigen::Matrix3d rigidTransform(double x, double y, double yaw) {
-  Eigen::Matrix3d t = Eigen::Matrix3d::Identity();
-  t.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
-  t(0, 2) = x;
-  t(1, 2) = y;
-  return t;
+  return rotationFrom(std::cos(yaw), std::sin(yaw), Eigen::Vector2d(x, y));
 }
 
 double yawOf(const Eigen::Matrix3d &transform) { return std::atan2(transform(1, 0), transform(0, 0)); }

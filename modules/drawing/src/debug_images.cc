@@ -28,7 +28,7 @@ cv::Scalar segmentColour(std::size_t k) {
 std::vector<Eigen::Vector2d> finitePoints(const LaserScan &scan, const Eigen::Matrix3d &transform) {
   std::vector<Eigen::Vector2d> points;
   for (const Complex &c : polarCode(scan))
-    if (isFinite(c)) points.push_back(transform.topLeftCorner<2, 2>() * toEigen(c) + transform.topRightCorner<2, 1>());
+    if (isFinite(c)) points.push_back(transformPoint(transform, toEigen(c)));
   return points;
 }
 
@@ -61,7 +61,7 @@ void drawPoints(cv::Mat &image, const View &view, const std::vector<Eigen::Vecto
 // A special point: a filled disc at the vertex and the two arms of its corner.
 void drawSpecialPoint(cv::Mat &image, const View &view, const SpecialPoint &point, const Eigen::Matrix3d &transform,
                       cv::Scalar colour) {
-  const Eigen::Vector2d at = transform.topLeftCorner<2, 2>() * point.position + transform.topRightCorner<2, 1>();
+  const Eigen::Vector2d at = transformPoint(transform, point.position);
   const double turn = std::atan2(transform(1, 0), transform(0, 0));
   const double arm = 0.35;
   for (double side : {-0.5, 0.5}) {

@@ -18,8 +18,7 @@ void check(const ComplexSequence &points, const RangeView &view, const Eigen::Ma
            Counts &counts) {
   for (const Complex &p : points) {
     if (!isFinite(p)) continue;
-    const Eigen::Vector2d moved =
-        motion.topLeftCorner<2, 2>() * Eigen::Vector2d(p.real(), p.imag()) + motion.topRightCorner<2, 1>();
+    const Eigen::Vector2d moved = transformPoint(motion, Eigen::Vector2d(p.real(), p.imag()));
     const RangeView::Sight sight = view.sightOf(moved, margin);
     if (sight == RangeView::Sight::kNoEvidence) continue;
     ++counts.tested;

@@ -15,24 +15,34 @@ namespace {
 // m, spacing of the contour points that vote, and the width of a lag bin.
 constexpr double kVoteStep = 0.1;
 
+// The axis (k = 0) or the direction across it (k = 1).
+Eigen::Vector2d direction(const Eigen::Vector2d &axis, int k) {
+  return k == 0 ? axis : Eigen::Vector2d(-axis.y(), axis.x());
+}
+
 // The points of `scan`'s contours, moved by `motion`, every kVoteStep m, whose contour runs
-// more across the axis `u` than along it (door frames, corners, the ends of walls), as
-// (along u, across u).
-void crossings(const ContourFeatures &scan, const Eigen::Matrix3d &motion, const Eigen::Vector2d &u,
-               std::vector<Eigen::Vector2d> &out) {
-  out.clear();
+// more across direction k of `axis` than along it (door frames, corners, the ends of walls),
+// as (along, across) that direction, into out[k]: each point in one list at most.
+void crossings(const ContourFeatures &scan, const Eigen::Matrix3d &motion, const Eigen::Vector2d &axis,
+               std::vector<Eigen::Vector2d> (&out)[2]) {
+  Eigen::Vector2d along[2], across[2];
+  for (int k = 0; k < 2; ++k) {
+    out[k].clear();
+    along[k] = direction(axis, k);
+    across[k] = Eigen::Vector2d(-along[k].y(), along[k].x());
+  }
   const Eigen::Matrix2d rotation = motion.topLeftCorner<2, 2>();
-  const Eigen::Vector2d translation = motion.topRightCorner<2, 1>();
-  const Eigen::Vector2d n(-u.y(), u.x());
   for (const EqualizedContour &contour : scan.contours) {
     if (contour.step <= 0.0 || contour.vertices.size() < 2) continue;
     const auto stride = static_cast<std::size_t>(std::max(1.0, std::round(kVoteStep / contour.step)));
     for (std::size_t r = 0; r < contour.vertices.size(); r += stride) {
       const std::size_t a = r >= stride ? r - stride : 0, b = std::min(r + stride, contour.vertices.size() - 1);
       const Eigen::Vector2d chord = rotation * toEigen(contour.vertices[b] - contour.vertices[a]);
-      if (std::abs(chord.dot(u)) >= std::abs(chord.dot(n))) continue;
-      const Eigen::Vector2d p = rotation * toEigen(contour.vertices[r]) + translation;
-      out.emplace_back(p.dot(u), p.dot(n));
+      for (int k = 0; k < 2; ++k) {
+        if (std::abs(chord.dot(along[k])) >= std::abs(chord.dot(across[k]))) continue;
+        const Eigen::Vector2d p = transformPoint(motion, toEigen(contour.vertices[r]));
+        out[k].emplace_back(p.dot(along[k]), p.dot(across[k]));
+      }
     }
   }
 }
@@ -53,39 +63,32 @@ Eigen::Vector2d axisOf(const ContourFeatures &scan) {
   return {std::cos(angle), std::sin(angle)};
 }
 
-// The axis (k = 0) or the direction across it (k = 1).
-Eigen::Vector2d direction(const Eigen::Vector2d &axis, int k) {
-  return k == 0 ? axis : Eigen::Vector2d(-axis.y(), axis.x());
-}
-
 }  // namespace
 
 void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, const ContourFeatures &target,
                   RegistrationBuffers::Repetition &scratch) {
   std::vector<Eigen::Matrix3d> &shifted = scratch.shifted;
-  std::vector<Eigen::Vector2d> &from_source = scratch.source_crossings;
   std::vector<double> &votes = scratch.votes;
   std::vector<std::pair<double, int>> &peaks = scratch.peaks;
   shifted.clear();
   // The target's side depends on the target alone: kept while it is the same extraction.
   if (target.extraction == 0 || scratch.crossed_target != target.extraction) {
     scratch.axis = axisOf(target);
-    for (int k = 0; k < 2; ++k) {
-      std::vector<Eigen::Vector2d> &points = scratch.target_crossings[k];
-      crossings(target, Eigen::Matrix3d::Identity(), direction(scratch.axis, k), points);
+    crossings(target, Eigen::Matrix3d::Identity(), scratch.axis, scratch.target_crossings);
+    for (std::vector<Eigen::Vector2d> &points : scratch.target_crossings)
       std::sort(points.begin(), points.end(),
                 [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) { return a.y() < b.y(); });
-    }
     scratch.crossed_target = target.extraction;
   }
+  crossings(source, best, scratch.axis, scratch.source_crossings);
   for (int k = 0; k < 2; ++k) {
     const Eigen::Vector2d u = direction(scratch.axis, k);
     const std::vector<Eigen::Vector2d> &from_target = scratch.target_crossings[k];
-    crossings(source, best, u, from_source);
+    const std::vector<Eigen::Vector2d> &from_source = scratch.source_crossings[k];
     if (from_source.empty() || from_target.empty()) continue;
     // Votes for each lag along u: pairs of crossings in the same lane across it (the target's sorted across it).
     double lo = INFINITY, hi = -INFINITY;
-    for (const std::vector<Eigen::Vector2d> *set : {&std::as_const(from_source), &from_target})
+    for (const std::vector<Eigen::Vector2d> *set : {&from_source, &from_target})
       for (const Eigen::Vector2d &c : *set) {
         lo = std::min(lo, c.x());
         hi = std::max(hi, c.x());
@@ -107,7 +110,7 @@ void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, co
     // distinct ones (beyond kDistinctMotions) that are local maxima, best first.
     const auto window = [&](int b) {
       double sum = 0.0;
-      for (int k = std::max(0, b - 1); k <= std::min<int>(votes.size() - 1, b + 1); ++k) sum += votes[k];
+      for (int c = std::max(0, b - 1); c <= std::min<int>(votes.size() - 1, b + 1); ++c) sum += votes[c];
       return sum;
     };
     const double aligned = window(half);
@@ -118,9 +121,9 @@ void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, co
       if (w >= kPeriodVotes * aligned && w >= window(b - 1) && w > window(b + 1)) peaks.emplace_back(w, b);
     }
     std::sort(peaks.begin(), peaks.end(), std::greater<>());
-    for (std::size_t k = 0; k < peaks.size() && k < kMaxPeriods; ++k) {
+    for (std::size_t q = 0; q < peaks.size() && q < kMaxPeriods; ++q) {
       Eigen::Matrix3d motion = best;
-      motion.topRightCorner<2, 1>() += (peaks[k].second - half) * kVoteStep * u;
+      motion.topRightCorner<2, 1>() += (peaks[q].second - half) * kVoteStep * u;
       shifted.push_back(motion);
     }
   }
@@ -144,14 +147,11 @@ SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const C
     const RangeView::Sight sight = target_view.sightOf(point, hidden_margin);
     return Spot{false, sight != RangeView::Sight::kNoEvidence && sight != RangeView::Sight::kHidden};
   };
-  const auto move = [](const Eigen::Matrix3d &m, const Eigen::Vector2d &p) -> Eigen::Vector2d {
-    return m.topLeftCorner<2, 2>() * p + m.topRightCorner<2, 1>();
-  };
   int shared = 0, on_first = 0, on_second = 0;
   for (const Eigen::Vector2d &p : samples) {
-    const Spot a = spot(move(first, p));
+    const Spot a = spot(transformPoint(first, p));
     if (!a.seen) continue;
-    const Spot b = spot(move(second, p));
+    const Spot b = spot(transformPoint(second, p));
     if (!b.seen) continue;
     ++shared;
     on_first += a.on_contour;

@@ -190,7 +190,7 @@ struct RegistrationBuffers {
   struct Repetition {
     std::uint64_t crossed_target = 0;  ///< extraction the target's axis and crossings are of (0: none)
     Eigen::Vector2d axis = Eigen::Vector2d::UnitX();
-    std::vector<Eigen::Vector2d> target_crossings[2], source_crossings;
+    std::vector<Eigen::Vector2d> target_crossings[2], source_crossings[2];
     std::vector<double> votes;
     std::vector<std::pair<double, int>> peaks;
     std::vector<Eigen::Matrix3d> shifted;

@@ -37,4 +37,9 @@ Eigen::Matrix3d rigidInverse(const Eigen::Matrix3d &rigid);
 /// The yaw of a rigid (or nearly rigid) transform.
 double yawOf(const Eigen::Matrix3d &transform);
 
+/// The point `p` moved by `transform`: H p.
+inline Eigen::Vector2d transformPoint(const Eigen::Matrix3d &transform, const Eigen::Vector2d &p) {
+  return transform.topLeftCorner<2, 2>() * p + transform.topRightCorner<2, 1>();
+}
+
 }  // namespace contour_reg
