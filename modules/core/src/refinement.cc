@@ -196,13 +196,20 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       const double residual = normal.dot(moved - index.points[j]);
       const double weight = std::abs(residual) <= params.huber ? 1.0 : params.huber / std::abs(residual);
       const Eigen::Vector3d jacobian(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rotated.y(), rotated.x())));
-      h += weight * jacobian * jacobian.transpose();
+      const Eigen::Vector3d weighted = weight * jacobian;
+      h(0, 0) += weighted(0) * jacobian(0);  // the upper triangle; the lower is mirrored after the pass
+      h(0, 1) += weighted(0) * jacobian(1);
+      h(0, 2) += weighted(0) * jacobian(2);
+      h(1, 1) += weighted(1) * jacobian(1);
+      h(1, 2) += weighted(1) * jacobian(2);
+      h(2, 2) += weighted(2) * jacobian(2);
       lever_squares += weight * rotated.squaredNorm();
       weight_sum += weight;
       g += weight * residual * jacobian;
       weighted_squares += weight * residual * residual;
       ++pairs;
     }
+    h.triangularView<Eigen::StrictlyLower>() = h.transpose();
     result.pairs = pairs;
     result.overlap = static_cast<double>(pairs) / static_cast<double>(samples.size());
     result.rmse = pairs > 0 ? std::sqrt(weighted_squares / pairs) : 0.0;
