@@ -58,11 +58,18 @@ bool settlesBack(Judged &found, double probe, const RefinementParams &params, co
 bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
                         RegistrationBuffers &buffers, Scorer &scorer) {
   // A refinement from the guess that has come a quarter of the distinct-motion distance near
-  // the best agrees with it: stop there.
+  // the best agrees with it: stop there. Where it leads shows on samples twice as sparse, as in
+  // the screening of hypotheses; one that leads elsewhere goes on from there on all samples, so
+  // that the motion it scores is refined as fully as the best.
   const Eigen::Matrix3d &best = found.best.refined.transform;
-  const RefinementResult from_guess =
-      buffers.refiner.refine(buffers.samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params),
-                             [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; });
+  const auto near_best = [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; };
+  contourSamples(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples);
+  const RefinementResult quick = buffers.refiner.refine(
+      buffers.sparse_samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params), near_best);
+  if (motionDistance(best, quick.transform) <= kDistinctMotions) return true;
+  RefinementParams polish = params.refinement;  // the sparse refinement ended at the smallest pairing distance
+  polish.max_distance = polish.min_distance;
+  const RefinementResult from_guess = buffers.refiner.refine(buffers.samples, quick.transform, polish, near_best);
   if (motionDistance(best, from_guess.transform) <= kDistinctMotions) return true;
   const double score = scorer.score(from_guess);
   found.consider(from_guess, score);
