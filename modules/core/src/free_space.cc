@@ -40,6 +40,10 @@ void RangeView::add(const Complex &point) {
 void RangeView::assign(const ContourFeatures &scan) {
   bearings_.clear();
   ranges_.clear();
+  std::size_t points = 0;
+  for (const ContourSegment &segment : scan.segments) points += segment.points.size();
+  bearings_.reserve(points);
+  ranges_.reserve(points);
   for (const ContourSegment &segment : scan.segments)
     for (const Complex &p : segment.points) add(p);
   index();

@@ -30,6 +30,9 @@ struct BearingIndex {
   // Indexes `target`, reusing the buffers of the last build.
   void build(const ContourFeatures &target) {
     order.clear();
+    std::size_t vertices = 0;
+    for (const EqualizedContour &contour : target.contours) vertices += contour.vertices.size();
+    order.reserve(vertices);
     for (std::size_t k = 0; k < target.contours.size(); ++k)
       for (std::size_t n = 0; n < target.contours[k].vertices.size(); ++n)
         order.push_back({std::arg(target.contours[k].vertices[n]), {int(k), int(n)}});
@@ -38,6 +41,9 @@ struct BearingIndex {
     points.clear();
     segment.clear();
     bearing.clear();
+    points.reserve(vertices);
+    segment.reserve(vertices);
+    bearing.reserve(vertices);
     for (const auto &[b, where] : order) {
       points.push_back(toEigen(target.contours[where.first].vertices[where.second]));
       segment.push_back(where.first);
@@ -109,9 +115,17 @@ std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, doubl
 
 void contourSamples(const ContourFeatures &source, double sample_step, std::vector<Eigen::Vector2d> &samples) {
   samples.clear();
+  const auto strideOf = [&](const EqualizedContour &contour) {
+    return static_cast<std::size_t>(std::max(1.0, std::round(sample_step / contour.step)));
+  };
+  std::size_t count = 0;
+  for (const EqualizedContour &contour : source.contours)
+    if (!contour.vertices.empty() && contour.step > 0.0)
+      count += (contour.vertices.size() + strideOf(contour) - 1) / strideOf(contour);
+  samples.reserve(count);
   for (const EqualizedContour &contour : source.contours) {
     if (contour.vertices.empty() || contour.step <= 0.0) continue;
-    const auto stride = static_cast<std::size_t>(std::max(1.0, std::round(sample_step / contour.step)));
+    const std::size_t stride = strideOf(contour);
     for (std::size_t r = 0; r < contour.vertices.size(); r += stride) samples.push_back(toEigen(contour.vertices[r]));
   }
 }
