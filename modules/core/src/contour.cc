@@ -76,31 +76,28 @@ std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
 void splitIntoSegments(const ComplexSequence &polar_code, const SegmentationParams &params,
                        std::vector<ContourSegment> &segments, SpareElements<ContourSegment> &spare) {
   spare.clear(segments);
-  ContourSegment *current = nullptr;  // the segment being grown, last in `segments`
-  auto close_current = [&]() {
-    if (current && !isLongEnough(*current, params)) spare.dropLast(segments);
-    current = nullptr;
+  // Whether neighbouring usable points are too far apart to lie on one surface.
+  const auto breaks = [&](const Complex &previous, const Complex &point) {
+    const double range = std::min(magnitude(point), magnitude(previous));
+    return magnitude(point - previous) > params.max_gap + params.max_gap_ratio * range;
   };
-  for (std::size_t n = 0; n < polar_code.size(); ++n) {
-    const Complex &point = polar_code[n];
-    if (!isUsable(point, params)) {
-      close_current();
+  const std::size_t size = polar_code.size();
+  for (std::size_t first = 0; first < size;) {
+    if (!isUsable(polar_code[first], params)) {
+      ++first;
       continue;
     }
-    if (current) {
-      const Complex &previous = current->points.back();
-      const double range = std::min(magnitude(point), magnitude(previous));
-      if (magnitude(point - previous) > params.max_gap + params.max_gap_ratio * range) close_current();
-    }
-    if (!current) {
-      current = &spare.append(segments);
-      current->points.clear();
-      current->beam_indices.clear();
-    }
-    current->points.push_back(point);
-    current->beam_indices.push_back(static_cast<int>(n));
+    // The run of usable points without a gap that starts at `first`, copied at once.
+    std::size_t end = first + 1;
+    while (end < size && isUsable(polar_code[end], params) && !breaks(polar_code[end - 1], polar_code[end])) ++end;
+    ContourSegment &segment = spare.append(segments);
+    segment.points.assign(polar_code.begin() + static_cast<std::ptrdiff_t>(first),
+                          polar_code.begin() + static_cast<std::ptrdiff_t>(end));
+    segment.beam_indices.resize(end - first);
+    for (std::size_t n = first; n < end; ++n) segment.beam_indices[n - first] = static_cast<int>(n);
+    if (!isLongEnough(segment, params)) spare.dropLast(segments);
+    first = end;
   }
-  close_current();
 }
 
 }  // namespace contour_reg
