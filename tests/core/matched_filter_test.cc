@@ -72,6 +72,48 @@ TEST(MatchedFilter, PrefixSumFormEqualsTheDirectFormula) {
   }
 }
 
+// Every window of a winding contour, with the default bank: the windows whose arms turn by
+// less than half the bank's smallest turn are answered before the bank is searched, the others
+// after; both must give what the direct formula gives over every bank element.
+TEST(MatchedFilter, EveryWindowOfAWindingContourEqualsTheDirectFormula) {
+  CornerFilterParams params;
+  ComplexSequence raw = {Complex(0, 0)};
+  double heading = 0.0;
+  for (int k = 0; k < 40; ++k) {  // legs of 0.3-0.7 m, turns of -70 to 70 deg and a few straight
+    heading += (k % 5 == 0 ? 0.0 : ((k * 37) % 141 - 70) * kDeg);
+    raw.push_back(raw.back() + std::polar(0.3 + 0.01 * ((k * 13) % 41), heading));
+  }
+  const EqualizedContour contour = equalizeByStep(raw, 0.05);
+  const CornerResponse response = filterCorners(contour, params);
+  const int s = params.arm_elements;
+  const ComplexSequence line(2 * s, Complex(1, 0));
+  int straight = 0, corners = 0;
+  for (std::size_t n = s; n + s < contour.vertices.size(); ++n) {
+    ComplexSequence window;
+    for (std::size_t r = n - s; r < n + s; ++r) window.push_back(contour.element(r));
+    double best = 0.0, best_angle = M_PI;
+    int best_turn = 0;
+    for (double degrees : params.corner_angles_deg)
+      for (int turn : {1, -1}) {
+        const double c =
+            matchedFilterOutput(window, referenceCorner(s, degrees * kDeg, turn)) - matchedFilterOutput(window, line);
+        if (c > best) {
+          best = c;
+          best_angle = degrees * kDeg;
+          best_turn = turn;
+        }
+      }
+    ASSERT_NEAR(response.response[n], best, 1e-12) << "vertex " << n;
+    if (best > 1e-9) {
+      EXPECT_NEAR(response.corner_angle[n], best_angle, 1e-12) << "vertex " << n;
+      EXPECT_EQ(response.turn[n], best_turn) << "vertex " << n;
+    }
+    (best > 0.0 ? corners : straight) += 1;
+  }
+  EXPECT_GT(straight, 100);  // both kinds of window were met
+  EXPECT_GT(corners, 100);
+}
+
 TEST(MatchedFilter, StraightLineGivesNoResponse) {
   const EqualizedContour line = equalizeByStep({{0, 0}, {3, 1}}, 0.05);
   const CornerResponse response = filterCorners(line, CornerFilterParams{});

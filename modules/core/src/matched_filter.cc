@@ -18,12 +18,17 @@ bool CornerFilterParams::validate(std::string *why) const {
 void CornerBank::build(const CornerFilterParams &params) {
   elements.clear();
   arm_elements = params.arm_elements;
+  double smallest_turn = M_PI;
   for (double degrees : params.corner_angles_deg) {
     const double angle = degrees * M_PI / 180.0;
     const double tau = M_PI - angle;  // the turn between the arms
+    smallest_turn = std::min(smallest_turn, tau);
     for (std::int8_t turn : {std::int8_t{1}, std::int8_t{-1}})
       elements.push_back({std::polar(1.0, -turn * tau), angle, turn});
   }
+  // 1e-3 rad of margin: the bank's outputs then fall short of the line's by far more than rounding.
+  const double half = std::max(0.0, 0.5 * smallest_turn - 1e-3);
+  straight_cos2 = std::cos(half) * std::cos(half);
 }
 
 ComplexSequence referenceCorner(int arm_elements, double corner_angle, int turn) {
@@ -71,13 +76,16 @@ void filterCorners(const EqualizedContour &contour, const CornerBank &bank, Corn
     if (n > s) energy -= squaredMagnitude(contour.element(n - s - 1));   // leaves it
     const Complex arm1 = contour.vertices[n] - contour.vertices[n - s];  // sum of the first arm's vectors
     const Complex arm2 = contour.vertices[n + s] - contour.vertices[n];  // sum of the second arm's vectors
+    // The best bank element c has the largest |arm1 + c arm2|^2 = |arm1|^2 + |arm2|^2 +
+    // 2 Re(c conj(arm1) arm2): the largest real part of c w, two products per element. Where
+    // the arms turn by less than half the bank's smallest turn, the line (c = 1) has the
+    // largest: no corner here, as along most of a wall.
+    const Complex w = std::conj(arm1) * arm2;
+    if (w.real() > 0.0 && w.real() * w.real() > bank.straight_cos2 * std::norm(w)) continue;
     const double norm_g = std::sqrt(std::max(0.0, energy));
     if (norm_g <= 0.0) continue;
     const double scale = 1.0 / (norm_g * norm_t);
     const double eta_line = magnitude(arm1 + arm2) * scale;  // eq. (13): straight-line output
-    // The best bank element c has the largest |arm1 + c arm2|^2 = |arm1|^2 + |arm2|^2 +
-    // 2 Re(c conj(arm1) arm2): the largest real part of c w, two products per element.
-    const Complex w = std::conj(arm1) * arm2;
     double best_real = -std::numeric_limits<double>::infinity();
     const CornerBank::Element *best_element = nullptr;
     for (const CornerBank::Element &element : bank.elements) {

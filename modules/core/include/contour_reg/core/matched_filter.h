@@ -56,6 +56,10 @@ struct CornerBank {
   };
   std::vector<Element> elements;
   int arm_elements = 0;  ///< s
+  /// Arms that turn by less than half the bank's smallest turn (pi - the largest corner angle)
+  /// fit the straight line better than any bank element: cos^2 of that half turn, less a
+  /// margin far above rounding, against which the filter tests a window before the bank.
+  double straight_cos2 = 1.0;
 
   /// Fills the bank for `params`, reusing its buffer.
   void build(const CornerFilterParams &params);
