@@ -56,9 +56,9 @@ struct CornerBank {
   };
   std::vector<Element> elements;
   int arm_elements = 0;  ///< s
-  /// Arms that turn by less than half the bank's smallest turn (pi - the largest corner angle)
-  /// fit the straight line better than any bank element: cos^2 of that half turn, less a
-  /// margin far above rounding, against which the filter tests a window before the bank.
+  /// cos^2 of half the bank's smallest turn (pi - the largest corner angle), less a margin far
+  /// above rounding. A window whose arms turn by less than that fits the straight line better
+  /// than any bank element: the filter answers it before searching the bank.
   double straight_cos2 = 1.0;
 
   /// Fills the bank for `params`, reusing its buffer.
