@@ -9,6 +9,7 @@
 
 #include "contour_reg/core/contour.h"
 #include "contour_reg/core/free_space.h"
+#include "contour_reg/core/transform_estimation.h"
 #include "contour_reg/io/pose2d.h"
 
 namespace contour_reg::drawing {
@@ -62,7 +63,7 @@ void drawPoints(cv::Mat &image, const View &view, const std::vector<Eigen::Vecto
 void drawSpecialPoint(cv::Mat &image, const View &view, const SpecialPoint &point, const Eigen::Matrix3d &transform,
                       cv::Scalar colour) {
   const Eigen::Vector2d at = transformPoint(transform, point.position);
-  const double turn = std::atan2(transform(1, 0), transform(0, 0));
+  const double turn = yawOf(transform);
   const double arm = 0.35;
   for (double side : {-0.5, 0.5}) {
     const double a = point.orientation + turn + side * point.corner_angle;

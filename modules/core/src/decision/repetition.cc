@@ -22,15 +22,12 @@ Eigen::Vector2d direction(const Eigen::Vector2d &axis, int k) {
 
 // The points of `scan`'s contours, moved by `motion`, every kVoteStep m, whose contour runs
 // more across direction k of `axis` than along it (door frames, corners, the ends of walls),
-// as (along, across) that direction, into out[k]: each point in one list at most.
+// as (along, across) that direction, into out[k]: a point runs across one direction at most.
 void crossings(const ContourFeatures &scan, const Eigen::Matrix3d &motion, const Eigen::Vector2d &axis,
                std::vector<Eigen::Vector2d> (&out)[2]) {
-  Eigen::Vector2d along[2], across[2];
-  for (int k = 0; k < 2; ++k) {
-    out[k].clear();
-    along[k] = direction(axis, k);
-    across[k] = Eigen::Vector2d(-along[k].y(), along[k].x());
-  }
+  const Eigen::Vector2d along[2] = {direction(axis, 0), direction(axis, 1)};
+  const Eigen::Vector2d across[2] = {along[1], -along[0]};
+  for (std::vector<Eigen::Vector2d> &points : out) points.clear();
   const Eigen::Matrix2d rotation = motion.topLeftCorner<2, 2>();
   for (const EqualizedContour &contour : scan.contours) {
     if (contour.step <= 0.0 || contour.vertices.size() < 2) continue;
@@ -38,11 +35,11 @@ void crossings(const ContourFeatures &scan, const Eigen::Matrix3d &motion, const
     for (std::size_t r = 0; r < contour.vertices.size(); r += stride) {
       const std::size_t a = r >= stride ? r - stride : 0, b = std::min(r + stride, contour.vertices.size() - 1);
       const Eigen::Vector2d chord = rotation * toEigen(contour.vertices[b] - contour.vertices[a]);
-      for (int k = 0; k < 2; ++k) {
-        if (std::abs(chord.dot(along[k])) >= std::abs(chord.dot(across[k]))) continue;
-        const Eigen::Vector2d p = transformPoint(motion, toEigen(contour.vertices[r]));
-        out[k].emplace_back(p.dot(along[k]), p.dot(across[k]));
-      }
+      const double on_axis = std::abs(chord.dot(along[0])), across_axis = std::abs(chord.dot(along[1]));
+      if (on_axis == across_axis) continue;  // as much along as across: neither
+      const int k = on_axis < across_axis ? 0 : 1;
+      const Eigen::Vector2d p = transformPoint(motion, toEigen(contour.vertices[r]));
+      out[k].emplace_back(p.dot(along[k]), p.dot(across[k]));
     }
   }
 }
