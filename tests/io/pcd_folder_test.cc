@@ -85,6 +85,25 @@ TEST(PcdFolder, HeadersWithInconsistentFieldsAreSkipped) {
   EXPECT_NE(log.report.problems.front().find("2.pcd"), std::string::npos);
 }
 
+// Found by tests/fuzz: PCL's header reader goes on reading lines after the DATA line while
+// they begin with a header keyword, so binary data that begins with one (here "COLUMNS",
+// PCL's old name of FIELDS) was read as a second FIELDS line and the reader overran its
+// buffers. Such files are skipped and named, with the line.
+TEST(PcdFolder, DataThatReadsAsAHeaderLineIsSkipped) {
+  test::TempDir dir;
+  savePcd(dir.file("1.pcd"), sampleScan(0.0), false);
+  const std::string header =
+      "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 4\nHEIGHT 1\n"
+      "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA binary\n";
+  dir.write("2.pcd", header + "COLUMNSx" + std::string(40, '\0'));
+  const ScanLog log = readPcdFolder(dir.path().string());
+  EXPECT_EQ(log.entries.size(), 1u);
+  EXPECT_EQ(log.report.skipped, 1u);
+  ASSERT_EQ(log.report.problems.size(), 1u);
+  EXPECT_NE(log.report.problems.front().find("2.pcd:12"), std::string::npos) << log.report.problems.front();
+  EXPECT_NE(log.report.problems.front().find("header line"), std::string::npos) << log.report.problems.front();
+}
+
 TEST(PcdFolder, AFolderWithoutScansIsAnError) {
   test::TempDir dir;
   EXPECT_THROW(readPcdFolder(dir.path().string()), ReadError);

@@ -78,6 +78,25 @@ std::string checkPcdHeader(const std::string &path, std::size_t &line) {
     return "POINTS differs from WIDTH x HEIGHT";
   if (header.count("VIEWPOINT") && header["VIEWPOINT"].size() != 7) return "VIEWPOINT needs 7 numbers";
   const std::size_t header_line = line;
+  // PCL's header reader goes on after the DATA line over empty lines, comments and VERSION
+  // lines, and reads any line that begins with a header keyword as one, whatever the data.
+  const std::streampos data_start = in.tellg();
+  for (std::size_t after = 0; after < kMaxHeaderLines && std::getline(in, text); ++after) {
+    std::istringstream fields(text);
+    std::string key;
+    if (!(fields >> key)) continue;
+    if (key[0] == '#' || key.rfind("VERSION", 0) == 0) continue;
+    static const char *pcl_keys[] = {"FIELDS", "COLUMNS", "SIZE",      "TYPE",   "COUNT",
+                                     "WIDTH",  "HEIGHT",  "VIEWPOINT", "POINTS", "DATA"};
+    for (const char *pcl_key : pcl_keys)
+      if (key.rfind(pcl_key, 0) == 0) {
+        line = header_line + after + 1;
+        return "the data after the DATA line reads as a header line '" + std::string(pcl_key) + "'";
+      }
+    break;
+  }
+  in.clear();
+  in.seekg(data_start);
   if (data == "ascii") {
     std::size_t rows = 0;
     while (std::getline(in, text)) {
