@@ -87,6 +87,8 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   if (run.stats.fused > 0)
     std::printf("  fused with the wheel odometry: %zu (%zu where the scans left a direction free)\n", run.stats.fused,
                 run.stats.pinned_by_wheels);
+  if (run.stats.decided_by_prediction > 0)
+    std::printf("  ambiguous, decided by the predicted motion: %zu\n", run.stats.decided_by_prediction);
   for (const auto &[reason, count] : run.stats.failure_reasons)
     std::printf("  failed: %s: %zu\n", reason.c_str(), count);
   std::printf("trajectory: %s (%s)\n", options.output.c_str(), frame.c_str());

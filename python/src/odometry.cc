@@ -67,6 +67,10 @@ void bindOdometry(py::module_ &m) {
           "pinned_by_wheels", [](const odometry::OdometryRun &r) { return r.stats.pinned_by_wheels; },
           "of those, the ones whose scans left a direction free (a corridor's axis)")
       .def_property_readonly(
+          "decided_by_prediction", [](const odometry::OdometryRun &r) { return r.stats.decided_by_prediction; },
+          "ambiguous registrations (distinct motions fit the scans as well) where the motion predicted over the "
+          "interval allows one of them alone: taken as converged")
+      .def_property_readonly(
           "failure_reasons", [](const odometry::OdometryRun &r) { return r.stats.failure_reasons; }, "status -> count")
       .def_property_readonly(
           "milliseconds",

@@ -73,6 +73,16 @@ void bindRegistration(py::module_ &m) {
           },
           "contour methods, not converged: the 3 x 3 transform of the best motion weighed and declined; "
           "None when none was weighed")
+      .def_property_readonly(
+          "alternatives",
+          [](const odometry::MatchResult &r) {
+            py::list motions;
+            for (const RejectedMotion &m : r.alternatives)
+              motions.append(py::make_tuple(matrixArray(m.transform), matrixArray(m.covariance)));
+            return motions;
+          },
+          "contour methods, ambiguous: the distinct motions that fit the scans about as well, each a "
+          "(3 x 3 transform, 3 x 3 covariance of x, y, yaw) pair; empty for every other status")
       .def_readonly("inliers", &odometry::MatchResult::inliers,
                     "contour methods: the special-point pairs the motion rests on")
       .def_readonly("milliseconds", &odometry::MatchResult::milliseconds, "wall time of the registration")

@@ -182,6 +182,39 @@ TEST(Decision, TheResultNamesTheBestRejectedMotion) {
   EXPECT_NEAR(declined.rejected->score, declined.rejected->overlap, 0.05);  // the right motion: no free space
 }
 
+// An ambiguous verdict names the distinct motions that fit as well, each with its covariance,
+// so that a prior on the motion can decide between them: the square turned 45 deg fits a turn
+// of 45 deg and one of -45 deg; the row of doors without the free-space term, the truth (3 m
+// ahead) and one door back (no motion).
+TEST(Decision, AnAmbiguousVerdictNamesTheMotionsThatFitAsWell) {
+  simulation::World square;
+  square.addPolygon({{-3, -3}, {3, -3}, {3, 3}, {-3, 3}});
+  const RegistrationResult tie = registerPair(square, test::pose2d(0, 0, 0), test::pose2d(0, 0, 45));
+  ASSERT_EQ(tie.status, RegistrationStatus::kAmbiguous) << tie.reason;
+  ASSERT_EQ(tie.alternatives.size(), 2u);
+  EXPECT_NEAR(yawOf(tie.alternatives[0].transform) * yawOf(tie.alternatives[1].transform), -M_PI * M_PI / 16, 0.03);
+  for (const RejectedMotion &motion : tie.alternatives) {
+    EXPECT_NEAR(std::abs(yawOf(motion.transform)), M_PI / 4, 0.02);
+    EXPECT_GT(motion.covariance(2, 2), 0.0);
+    EXPECT_LT(motion.covariance(2, 2), std::pow(1.0 * M_PI / 180.0, 2));  // the turn's 2 % of 45 deg and little more
+  }
+
+  const simulation::World corridor = test::corridorOfDoors();
+  const RegistrationResult doors =
+      registerPair(corridor, test::pose2d(0, 0, 0), test::pose2d(3.0, 0.05, 1), withoutFreeSpace());
+  ASSERT_EQ(doors.status, RegistrationStatus::kAmbiguous) << doors.reason;
+  ASSERT_EQ(doors.alternatives.size(), 2u);
+  double ahead = doors.alternatives[0].transform(0, 2), behind = doors.alternatives[1].transform(0, 2);
+  if (ahead < behind) std::swap(ahead, behind);
+  EXPECT_NEAR(ahead, 3.0, 0.05);
+  EXPECT_NEAR(behind, 0.0, 0.05);
+
+  // Every other verdict leaves them empty.
+  const RegistrationResult decided = registerPair(square, test::pose2d(0, 0, 0), test::pose2d(0, 0, 30));
+  ASSERT_TRUE(decided.converged) << decided.reason;
+  EXPECT_TRUE(decided.alternatives.empty());
+}
+
 // The square turned 30 deg: two corners, the refinement pairs 89 % of the contour.
 TEST(Decision, TwoCornersStandOnlyWithALargeOverlap) {
   simulation::World square;

@@ -174,3 +174,17 @@ def test_wheel_odometry_is_fused_with_the_guess_odom(s_run):
     for step in fused.steps:
         assert np.linalg.eigvalsh(step.covariance).min() > 0
     assert cr.evaluate(fused.trajectory, s_run.ground_truth)["end_point_percent"] < 1.0
+
+
+def test_the_predicted_motion_decides_between_motions_a_period_apart():
+    # Along the door row the scans fit a motion a period (3 m) along as well as the truth; the
+    # motion predicted over the interval allows one of them alone.
+    run = cr.simulate(path="line", map="doors", lidar="ydlidar", rate=1.0, speed=1.0)
+    odometry = cr.odometry(run.log)
+    assert odometry.decided_by_prediction >= odometry.registrations // 2
+    assert "ambiguous" not in odometry.failure_reasons
+    truth = run.ground_truth
+    for step in odometry.steps:
+        if step.converged:
+            expected = cr.relative_pose(truth[step.reference, 1:], truth[step.scan, 1:])
+            assert abs(step.motion[0] - expected[0]) < 0.05, step.scan

@@ -186,3 +186,21 @@ def test_twists_deskew_scans_taken_while_moving():
         cr.register(np.zeros((4, 2)), log[0], source_twist=(1.0, 0.0, 0.0))
     with pytest.raises(ValueError):
         cr.register(log[1], log[0], source_twist=(1.0, 0.0))
+
+
+def test_an_ambiguous_registration_gives_the_motions_that_fit_as_well(s_run):
+    # A square room seen from its centre, and again turned 45 deg: turns of 45 deg plus any
+    # multiple of 90 deg fit alike.
+    target = square_room_scan()
+    beams = 720
+    angles = -np.pi + np.arange(beams) * (2 * np.pi / beams) + np.radians(45.0)
+    ranges = 2.0 / np.maximum(np.abs(np.cos(angles)), np.abs(np.sin(angles)))
+    source = cr.LaserScan(ranges, angle_min=-np.pi, angle_increment=2 * np.pi / beams, range_max=30.0)
+    result = cr.register(source, target)
+    assert result.status == "ambiguous", result
+    assert len(result.alternatives) == 2
+    yaws = [np.arctan2(t[1, 0], t[0, 0]) for t, _ in result.alternatives]
+    for yaw in yaws:
+        assert abs(np.remainder(yaw - np.pi / 4 + np.pi / 4, np.pi / 2) - np.pi / 4) < 0.02, yaws
+    assert abs(np.remainder(yaws[0] - yaws[1] + np.pi, 2 * np.pi) - np.pi) > 1.0, yaws  # distinct turns
+    assert cr.register(s_run.log[2], s_run.log[0]).alternatives == []  # converged: none

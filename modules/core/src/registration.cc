@@ -44,7 +44,7 @@ std::vector<Correspondence> gateByGuess(const std::vector<Correspondence> &pairs
 
 // `motion` as RegistrationResult::rejected reports it.
 RejectedMotion rejected(decision::ScoredMotion &motion, decision::Scorer &scorer) {
-  return {motion.refined.transform, motion.refined.overlap, scorer.score(motion)};
+  return {motion.refined.transform, motion.refined.overlap, scorer.score(motion), motion.refined.covariance};
 }
 
 // Keeps `motion` in result.rejected when it scores higher than the motion there.
@@ -116,6 +116,11 @@ const char *toString(RegistrationStatus status) {
 }
 
 std::ostream &operator<<(std::ostream &out, RegistrationStatus status) { return out << toString(status); }
+
+double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
+  return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
+         std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
+}
 
 bool isUndecided(RegistrationStatus status) {
   return status != RegistrationStatus::kConverged && status != RegistrationStatus::kInvalidParameters;
@@ -276,11 +281,13 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
     result.reason += "; " + why;
     offerRejected(result, rejected(judged.best, scorer));
     if (declined) offerRejected(result, *declined);
+    if (verdict == RegistrationStatus::kAmbiguous && judged.rival)
+      result.alternatives = {rejected(judged.best, scorer), rejected(*judged.rival, scorer)};
     return;
   }
   const RefinementResult &refined = judged.best.refined;
   if (judged.rival) offerRejected(result, rejected(*judged.rival, scorer));
-  if (declined && decision::motionDistance(declined->transform, refined.transform) > decision::kDistinctMotions)
+  if (declined && motionDistance(declined->transform, refined.transform) > kDistinctMotions)
     offerRejected(result, *declined);
   result.transform = refined.transform;
   result.contour_rmse = refined.rmse;

@@ -51,6 +51,24 @@ struct PredictionRecord {
   }
 };
 
+// What the odometry expects of one scan interval, and how far off that can be: per component
+// (x m, y m, yaw rad), the largest variance of the chosen prediction's errors that its record
+// allows (none before the first converged step).
+struct Prediction {
+  io::Pose2D motion;
+  std::optional<Eigen::Array3d> variance;
+};
+
+// The upper 99.9 % confidence bound of a variance whose mean squared error over `steps`
+// samples is `mean_square`: steps x mean_square over the 0.1 % quantile of chi-square with
+// `steps` degrees of freedom (Wilson-Hilferty); none while so few steps bound nothing.
+std::optional<Eigen::Array3d> varianceBound(const Eigen::Array3d &mean_square, int steps) {
+  if (steps < 1) return std::nullopt;
+  const double n = steps, quantile = n * std::pow(1.0 - 2.0 / (9.0 * n) - 3.09 * std::sqrt(2.0 / (9.0 * n)), 3);
+  if (!(quantile > 0.0)) return std::nullopt;
+  return mean_square * (n / quantile);
+}
+
 // The motion over a failed registration's interval: the wheels' and the constant-velocity
 // prediction, component by component, each weighted by the inverse of its mean squared error
 // so far, so that whichever has predicted the registrations better decides (the last motion
@@ -58,18 +76,49 @@ struct PredictionRecord {
 // changed (a turn begun between a slow LIDAR's scans) and only the wheels measured it: the
 // wheels alone. The wheels alone, too, until there is a record to weigh them by; the last
 // motion alone without wheels.
-io::Pose2D bridge(const std::optional<io::Pose2D> &wheel, const PredictionRecord &by_wheel, const io::Pose2D &velocity,
-                  const PredictionRecord &by_velocity) {
-  if (!wheel) return velocity;
-  if (by_wheel.steps == 0 || by_velocity.steps == 0) return *wheel;
+Prediction predict(const std::optional<io::Pose2D> &wheel, const PredictionRecord &by_wheel, const io::Pose2D &velocity,
+                   const PredictionRecord &by_velocity) {
+  const auto bound = [](const PredictionRecord &r) { return varianceBound(r.squares / std::max(r.steps, 1), r.steps); };
+  if (!wheel) return {velocity, bound(by_velocity)};
+  if (by_wheel.steps == 0 || by_velocity.steps == 0) return {*wheel, bound(by_wheel)};
   const Eigen::Array3d a = by_wheel.squares / by_wheel.steps, b = by_velocity.squares / by_velocity.steps;
   const Eigen::Array3d gap(wheel->x - velocity.x, wheel->y - velocity.y,
                            std::remainder(wheel->yaw - velocity.yaw, 2.0 * M_PI));
   // Apart by more than their records allow: chi-square with 3 degrees of freedom, 99.9 %.
-  if ((gap.square() / (a + b).max(1e-12)).sum() > kChiSquare3) return *wheel;
-  // Weight of the wheels, per component: 1/a over 1/a + 1/b is b over a + b.
+  if ((gap.square() / (a + b).max(1e-12)).sum() > kChiSquare3) return {*wheel, bound(by_wheel)};
+  // Weight of the wheels, per component: 1/a over 1/a + 1/b is b over a + b; the mean squared
+  // error of the weighted mean is ab / (a + b), bounded over the shorter record.
   const Eigen::Array3d w = (a + b > 0.0).select(b / (a + b), 0.5);
-  return {velocity.x + w(0) * gap(0), velocity.y + w(1) * gap(1), velocity.yaw + w(2) * gap(2)};
+  return {{velocity.x + w(0) * gap(0), velocity.y + w(1) * gap(1), velocity.yaw + w(2) * gap(2)},
+          varianceBound((a + b > 0.0).select(a * b / (a + b), 0.0), std::min(by_wheel.steps, by_velocity.steps))};
+}
+
+// Of an ambiguous registration's alternatives (distinct motions that fit the scans about as
+// well, RegistrationResult::alternatives), the one the prediction decides for: the only one
+// it allows (chi-square with 3 degrees of freedom, 99.9 %, on the sum of the prediction's
+// and the motion's variance), where the region it allows is too small to hold another
+// motion as far from it as the other alternatives (motionDistance): a motion two periods
+// along a row of doors is as far beyond it as the one a period along. `motions` are over the
+// interval, in the earlier scan's frame, in the order of `alternatives`; none when undecided.
+std::optional<std::size_t> decideBetween(const Prediction &prediction, const std::vector<io::Pose2D> &motions,
+                                         const std::vector<RejectedMotion> &alternatives) {
+  if (!prediction.variance || motions.size() < 2) return std::nullopt;
+  std::optional<std::size_t> allowed;
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    if (!alternatives[i].covariance.allFinite()) return std::nullopt;
+    const Eigen::Array3d variance = *prediction.variance + alternatives[i].covariance.diagonal().array().max(0.0);
+    if (!(variance > 0.0).all()) return std::nullopt;
+    const Eigen::Array3d gap(motions[i].x - prediction.motion.x, motions[i].y - prediction.motion.y,
+                             std::remainder(motions[i].yaw - prediction.motion.yaw, 2.0 * M_PI));
+    if ((gap.square() / variance).sum() > kChiSquare3) continue;
+    if (allowed) return std::nullopt;  // the prediction allows two
+    const Eigen::Array3d half_width = (kChiSquare3 * variance).sqrt();
+    const double extent = 2.0 * (std::hypot(half_width(0), half_width(1)) + half_width(2));
+    for (std::size_t j = 0; j < motions.size(); ++j)
+      if (j != i && extent >= motionDistance(toMatrix(motions[i]), toMatrix(motions[j]))) return std::nullopt;
+    allowed = i;
+  }
+  return allowed;
 }
 
 enum class Fused { kNo, kConverged, kPinned };
@@ -255,6 +304,22 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       }
       match.milliseconds = both_ms;
     }
+    // Repeated structure (a row of doors) leaves distinct motions that fit the scans as well;
+    // the motion the odometry expects over the interval may allow only one of them.
+    if (!match.converged && !match.alternatives.empty()) {
+      std::vector<io::Pose2D> motions;
+      for (const RejectedMotion &alternative : match.alternatives)
+        motions.push_back(between(previous, compose(poses[reference], toPose(alternative.transform))));
+      if (const std::optional<std::size_t> chosen = decideBetween(
+              predict(wheel, wheel_record, velocity_step, velocity_record), motions, match.alternatives)) {
+        match.transform = match.alternatives[*chosen].transform;
+        match.covariance = match.alternatives[*chosen].covariance;
+        match.converged = true;
+        match.status.clear();
+        match.reason.clear();
+        ++run.stats.decided_by_prediction;
+      }
+    }
     if (options.guess == GuessSource::kOdometry && options.fuse_wheel_odometry && entries[reference].odometry &&
         entries[k].odometry) {
       const Fused fused =
@@ -279,7 +344,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       run.stats.degenerate += match.status == "degenerate";
       ++run.stats.failure_reasons[match.status];
       run.stats.failed_scans.push_back(k);
-      pose = compose(previous, bridge(wheel, wheel_record, velocity_step, velocity_record));
+      pose = compose(previous, predict(wheel, wheel_record, velocity_step, velocity_record).motion);
     }
     if (match.converged && wheel) {
       const io::Pose2D found = between(previous, pose);

@@ -198,6 +198,7 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
       result.status = toString(contour_->getResult().status);
       if (!result.converged && contour_->getResult().rejected)
         result.declined = contour_->getResult().rejected->transform;
+      result.alternatives = contour_->getResult().alternatives;
     }
   }
   if (!result.converged && result.reason.empty()) result.reason = name_ + " did not converge";

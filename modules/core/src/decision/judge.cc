@@ -141,7 +141,10 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
     if (rival.overlap - score > against_best + kScoreTie) continue;
     const SharedViewFit fit = sharedViewFit(buffers.samples, buffers.refiner, scorer.targetView(), best.transform,
                                             rival.transform, params.refinement.min_distance, params.free_space.margin);
-    if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) return false;
+    if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) {
+      found.rival = ScoredMotion{rival, true, score};  // the motion the best ties with
+      return false;
+    }
   }
   return true;
 }

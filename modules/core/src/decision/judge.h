@@ -39,7 +39,8 @@ struct Judged {
   bool ambiguous = false;
   /// The best-scoring motion distinct from `best` (motionDistance > kDistinctMotions) that the
   /// judge scored: among the candidates and in its checks (probes, the guess, the contours'
-  /// hypotheses). None when it scored no such motion.
+  /// hypotheses); the motion a period along repeated structure that fits what both scans saw
+  /// as well, when the check for repetition finds one. None when it scored no such motion.
   std::optional<ScoredMotion> rival;
   /// Keeps `motion`, scored `score`, as the rival when it is distinct from the best and scores higher.
   void consider(const RefinementResult &motion, double score);

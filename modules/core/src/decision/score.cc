@@ -6,11 +6,6 @@
 
 namespace contour_reg::decision {
 
-double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
-  return (a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm() +
-         std::abs(std::remainder(yawOf(a) - yawOf(b), 2.0 * M_PI));
-}
-
 double Scorer::contradiction(const Eigen::Matrix3d &motion) {
   const auto [seen_by_target, seen_by_source] = evidenceEachWay(motion);
   return (seen_by_target + seen_by_source).fraction();

@@ -7,7 +7,8 @@
 /// (free_space.h): one unit, a fraction of the contour. Overlap alone cannot tell a motion one
 /// door off along a row of doors from the truth; the walls and doors it lands on the other
 /// scan's seen-through space can. Motions whose scores differ by less than kScoreTie fit about
-/// as well; motions farther apart than kDistinctMotions (motionDistance) are distinct answers.
+/// as well; motions farther apart than kDistinctMotions (motionDistance, registration.h) are
+/// distinct answers.
 
 #include <utility>
 
@@ -22,12 +23,6 @@ namespace contour_reg::decision {
 
 /// Refined motions whose scores (fractions of the contour) differ by less than this fit about as well.
 constexpr double kScoreTie = 0.05;
-
-/// Motions farther apart than this (motionDistance) are distinct answers.
-constexpr double kDistinctMotions = 0.2;
-
-/// How far apart two motions are: m, with 1 m per rad of turn.
-double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b);
 
 /// A refined motion and its score, computed when first needed.
 struct ScoredMotion {

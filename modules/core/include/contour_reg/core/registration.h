@@ -105,13 +105,24 @@ enum class RegistrationStatus {
   kContradicted,           ///< the best motion puts contour where the other scan's beams saw through empty space
 };
 
-/// A motion the judge weighed and did not return, for pictures and diagnosis.
+/// How far apart two motions are: m of translation plus rad of turn (1 m per rad).
+double motionDistance(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b);
+
+/// Motions farther apart than this (motionDistance) are distinct answers: the one definition
+/// every verdict uses (a rival, an ambiguous pair of motions, a probe that did not settle back).
+constexpr double kDistinctMotions = 0.2;
+
+/// A motion the judge weighed and did not return, for pictures, diagnosis and a prior to
+/// decide between (RegistrationResult::alternatives).
 struct RejectedMotion {
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< source to target
   double overlap = 0.0;                                     ///< fraction of source contour the refinement paired
   /// The decision's score (decision/score.h): overlap less the share of both contours the
   /// motion puts in the other scan's free space.
   double score = 0.0;
+  /// x, y, yaw: the refinement's covariance of the motion where the contours put it (as
+  /// RegistrationResult::covariance of a converged one), zero where it has none.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
 /// A short name for a status ("converged", "too_few_special_points", ...).
@@ -163,6 +174,11 @@ struct RegistrationResult {
   /// when no refinement ran (refinement off, a scan without contours, or the corners without
   /// a motion and the local fallback off) or a converged motion met no distinct rival.
   std::optional<RejectedMotion> rejected;
+  /// An ambiguous verdict's distinct motions that fit the scans about as well: the best, then
+  /// the rival it ties with (a candidate within the score's tie, or a motion a period along
+  /// repeated structure). The scans cannot tell them apart; a prior on the motion that allows
+  /// one of them alone can (odometry's prediction over the interval does). Empty otherwise.
+  std::vector<RejectedMotion> alternatives;
 };
 
 /// What registration keeps between calls: the target's refinement index, rebuilt only when

@@ -86,9 +86,12 @@ struct OdometryStats {
   std::size_t failures = 0;            ///< not converged (degenerate ones included)
   std::size_t degenerate = 0;          ///< of the failures, those whose status is "degenerate"
   std::size_t recovered_by_retry = 0;  ///< registrations that failed from the guess and converged on the retry
-  std::size_t fused = 0;               ///< registrations fused with the wheel odometry
-  std::size_t pinned_by_wheels = 0;    ///< of those, the ones whose scans left a direction free
-  std::vector<double> milliseconds;    ///< per registration
+  /// Ambiguous registrations (distinct motions fit the scans as well: repeated structure) where
+  /// the prediction over the interval allows one of those motions alone: taken as converged.
+  std::size_t decided_by_prediction = 0;
+  std::size_t fused = 0;                               ///< registrations fused with the wheel odometry
+  std::size_t pinned_by_wheels = 0;                    ///< of those, the ones whose scans left a direction free
+  std::vector<double> milliseconds;                    ///< per registration
   std::map<std::string, std::size_t> failure_reasons;  ///< MatchResult::status -> count
   std::vector<std::size_t> failed_scans;               ///< scan indices whose registration failed
 };
