@@ -37,9 +37,10 @@ struct RefinementParams {
   double stop_rotation = 1e-5;
   double degeneracy_ratio = 0.005;  ///< smallest / largest eigenvalue below this is degenerate: no step along it
   /// The covariance is sigma^2 H^-1 times this. Neighbouring samples share raw points (the
-  /// equalization averages them), so their residuals are correlated and sigma^2 H^-1 alone is
-  /// too small; 1.25 makes the mean normalised error squared about 3 on simulated rooms
-  /// (tests/core/degeneracy_test.cc).
+  /// equalization interpolates them), so their residuals are correlated: H counts the samples
+  /// between two raw returns farther apart than sample_step once per sample_step of their
+  /// spacing, and this scale covers the correlation that remains where returns are dense
+  /// (mean normalised error squared 2.1-3.1 on simulated rooms, tests/core/degeneracy_test.cc).
   double covariance_scale = 1.25;
   /// rad of yaw standard deviation per rad of turn, added to the covariance in quadrature:
   /// errors that grow with the turn and that the contours cannot show (a scan skewed by the
