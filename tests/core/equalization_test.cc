@@ -47,6 +47,25 @@ TEST(Equalization, FixedStepDropsTheRemainder) {
   EXPECT_NEAR(arcOnLShape(contour.vertices.back()), 4.8, 1e-9);
 }
 
+// Each vertex knows how far apart the two raw points it lies between are: the covariance
+// counts the samples on a sparse stretch by it (refinement.h).
+TEST(Equalization, EachVertexKnowsTheSpacingOfItsRawPoints) {
+  const ComplexSequence points = lShape();
+  const EqualizedContour contour = equalizeByStep(points, 0.1);
+  ASSERT_EQ(contour.spacing.size(), contour.vertices.size());
+  const std::vector<double> arc = arcLengths(points);
+  for (std::size_t r = 0; r < contour.vertices.size(); ++r) {
+    // The length of a raw vector that holds the vertex (either one, for a vertex on a raw point).
+    const double at = r * contour.step;
+    bool held = false;
+    for (std::size_t n = 0; n + 1 < points.size(); ++n)
+      held |=
+          arc[n] <= at + 1e-9 && at - 1e-9 <= arc[n + 1] && std::abs(contour.spacing[r] - (arc[n + 1] - arc[n])) < 1e-9;
+    EXPECT_TRUE(held) << "vertex " << r << ": " << contour.spacing[r];
+  }
+  EXPECT_NEAR(contour.spacing[15], 1.85, 1e-9);  // 1.5 m lies between the raw points at 1.15 and 3 m
+}
+
 TEST(Equalization, SegmentsInFixedCountModeShareOneStep) {
   std::vector<ContourSegment> segments(2);
   segments[0].points = {{0, 0}, {3, 0}};

@@ -16,11 +16,15 @@ void resample(const ComplexSequence &points, const std::vector<double> &arc, dou
               EqualizedContour &contour) {
   contour.step = step;
   contour.vertices.clear();
+  contour.spacing.clear();
   if (points.size() < 2 || count == 0 || !(step > 0.0)) return;
   contour.vertices.reserve(count + 1);
+  contour.spacing.reserve(count + 1);
   std::size_t hint = 0;
-  for (std::size_t r = 0; r <= count; ++r)
+  for (std::size_t r = 0; r <= count; ++r) {
     contour.vertices.push_back(pointAtArcLength(points, arc, static_cast<double>(r) * step, &hint));
+    contour.spacing.push_back(arc[hint + 1] - arc[hint]);  // the raw vector the vertex lies on
+  }
 }
 
 // The element length of every segment: the fixed step, or the paper's total length / p.

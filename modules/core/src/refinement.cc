@@ -26,8 +26,6 @@ struct BearingIndex {
   std::vector<char> has_normal;
   std::vector<double> spacing;                                // m between the raw returns the point lies between
   std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (contour, vertex): kept for the next build
-  std::vector<std::vector<double>> raw_spacing;               // spacing per contour and vertex: kept for the next build
-  std::vector<double> arc;                                    // a raw segment's arc lengths
   BearingBuckets buckets;
 
   // Indexes `target`, reusing the buffers of the last build.
@@ -49,10 +47,9 @@ struct BearingIndex {
     bearing.reserve(vertices);
     spacing.clear();
     spacing.reserve(vertices);
-    raw_spacing.resize(target.contours.size());
-    for (std::size_t k = 0; k < target.contours.size(); ++k) rawSpacing(target, k, raw_spacing[k]);
     for (const auto &[b, where] : order) {
-      spacing.push_back(raw_spacing[where.first][where.second]);
+      const std::vector<double> &apart = target.contours[where.first].spacing;
+      spacing.push_back(where.second < static_cast<int>(apart.size()) ? apart[where.second] : 0.0);
       points.push_back(toEigen(target.contours[where.first].vertices[where.second]));
       segment.push_back(where.first);
       bearing.push_back(b);
@@ -61,23 +58,6 @@ struct BearingIndex {
     has_normal.assign(points.size(), 0);
     for (std::size_t j = 0; j < points.size(); ++j) has_normal[j] = computeNormal(static_cast<int>(j), normals[j]);
     buckets.build(bearing, 4);
-  }
-
-  // For each vertex of contour k of `target`, the distance between the two raw returns of its
-  // segment that it lies between.
-  void rawSpacing(const ContourFeatures &target, std::size_t k, std::vector<double> &out) {
-    const EqualizedContour &contour = target.contours[k];
-    out.assign(contour.vertices.size(), 0.0);
-    if (contour.segment < 0 || static_cast<std::size_t>(contour.segment) >= target.segments.size()) return;
-    const ComplexSequence &raw = target.segments[contour.segment].points;
-    if (raw.size() < 2) return;
-    arcLengths(raw, arc);
-    std::size_t e = 0;
-    for (std::size_t n = 0; n < contour.vertices.size(); ++n) {
-      const double at = static_cast<double>(n) * contour.step;
-      while (e + 2 < raw.size() && arc[e + 1] <= at) ++e;
-      out[n] = arc[e + 1] - arc[e];
-    }
   }
 
   // Nearest point to p among those near p's bearing; -1 when none within max_distance: walks
@@ -210,7 +190,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   if (samples.empty() || index.points.empty()) return result;
 
   double x = initial(0, 2), y = initial(1, 2), yaw = yawOf(initial);
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero(), shared_information = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero(), counted_information = Eigen::Matrix3d::Zero();
   double weighted_squares = 0.0;
   double weight_sum = 0.0;
   double lever_squares =
@@ -220,7 +200,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.iterations = iteration + 1;
     const Eigen::Rotation2Dd rotation(yaw);
     const Eigen::Vector2d translation(x, y);
-    Eigen::Matrix3d h = Eigen::Matrix3d::Zero(), shared = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero(), surplus = Eigen::Matrix3d::Zero();
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
     weighted_squares = 0.0;
     lever_squares = 0.0;
@@ -243,15 +223,17 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       h(1, 2) += weighted(1) * jacobian(2);
       h(2, 2) += weighted(2) * jacobian(2);
       // Samples between the same two raw returns share their noise: together they carry the
-      // information of one sample per sample_step of the returns' spacing.
-      const double apart = index.spacing[j];
-      const Eigen::Vector3d counted = apart > params.sample_step ? (params.sample_step / apart) * weighted : weighted;
-      shared(0, 0) += counted(0) * jacobian(0);
-      shared(0, 1) += counted(0) * jacobian(1);
-      shared(0, 2) += counted(0) * jacobian(2);
-      shared(1, 1) += counted(1) * jacobian(1);
-      shared(1, 2) += counted(1) * jacobian(2);
-      shared(2, 2) += counted(2) * jacobian(2);
+      // information of one sample per sample_step of the returns' spacing, so each counts
+      // sample_step / spacing of its weight (`surplus` holds the rest).
+      if (index.spacing[j] > params.sample_step) {
+        const Eigen::Vector3d uncounted = (1.0 - params.sample_step / index.spacing[j]) * weighted;
+        surplus(0, 0) += uncounted(0) * jacobian(0);
+        surplus(0, 1) += uncounted(0) * jacobian(1);
+        surplus(0, 2) += uncounted(0) * jacobian(2);
+        surplus(1, 1) += uncounted(1) * jacobian(1);
+        surplus(1, 2) += uncounted(1) * jacobian(2);
+        surplus(2, 2) += uncounted(2) * jacobian(2);
+      }
       lever_squares += weight * rotated.squaredNorm();
       weight_sum += weight;
       g += weight * residual * jacobian;
@@ -259,12 +241,12 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       ++pairs;
     }
     h.triangularView<Eigen::StrictlyLower>() = h.transpose();
-    shared.triangularView<Eigen::StrictlyLower>() = shared.transpose();
+    surplus.triangularView<Eigen::StrictlyLower>() = surplus.transpose();
     result.pairs = pairs;
     result.overlap = static_cast<double>(pairs) / static_cast<double>(samples.size());
     result.rmse = pairs > 0 ? std::sqrt(weighted_squares / pairs) : 0.0;
     information = h;
-    shared_information = shared;
+    counted_information = h - surplus;
     if (pairs < 6) break;
     // Solve only along well-constrained directions, rotation measured in metres of arc.
     result.rms_range = rmsRange(lever_squares, weight_sum);
@@ -306,8 +288,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
-    if (sigma2 > 0.0) result.information = shared_information / (params.covariance_scale * sigma2);
-    const Eigen::FullPivLU<Eigen::Matrix3d> lu(shared_information);
+    if (sigma2 > 0.0) result.information = counted_information / (params.covariance_scale * sigma2);
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(counted_information);
     if (lu.isInvertible()) {
       result.covariance = params.covariance_scale * sigma2 * lu.inverse();
       const double turn = params.turn_noise * std::abs(yawOf(result.transform));

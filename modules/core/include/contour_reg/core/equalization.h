@@ -37,8 +37,11 @@ struct EqualizationParams {
 /// An equalized segment: vertices at equal arc-length steps along the raw polyline.
 struct EqualizedContour {
   ComplexSequence vertices;  ///< Q(0..p); elementary vector e(r) = Q(r+1) - Q(r)
-  double step = 0.0;         ///< m of raw arc length per element
-  int segment = -1;          ///< index of the raw segment it came from
+  /// m, for each vertex: the length of the raw vector it lies on, how far apart the two raw
+  /// points it is interpolated between are (a sparse stretch: a distant or oblique wall).
+  std::vector<double> spacing;
+  double step = 0.0;  ///< m of raw arc length per element
+  int segment = -1;   ///< index of the raw segment it came from
 
   std::size_t elementCount() const { return vertices.empty() ? 0 : vertices.size() - 1; }
   Complex element(std::size_t r) const { return vertices[r + 1] - vertices[r]; }
