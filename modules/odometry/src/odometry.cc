@@ -70,12 +70,13 @@ std::optional<Eigen::Array3d> varianceBound(const Eigen::Array3d &mean_square, i
 }
 
 // The motion expected over a registration's interval (a failed one is bridged by it): the
-// wheels' and the constant-velocity prediction, component by component, each weighted by the inverse of its mean squared error
-// so far, so that whichever has predicted the registrations better decides (the last motion
-// where the wheels slip). Where the two differ by more than their errors allow, the motion
-// changed (a turn begun between a slow LIDAR's scans) and only the wheels measured it: the
-// wheels alone. The wheels alone, too, until there is a record to weigh them by; the last
-// motion alone without wheels. With it the variance bound of the record of what it took.
+// wheels' and the constant-velocity prediction, component by component, each weighted by the
+// inverse of its mean squared error so far, so that whichever has predicted the registrations
+// better decides (the last motion where the wheels slip). Where the two differ by more than
+// their errors allow, the motion changed (a turn begun between a slow LIDAR's scans) and only
+// the wheels measured it: the wheels alone. The wheels alone, too, until there is a record to
+// weigh them by; the last motion alone without wheels. With it, the variance bound of the
+// record of what it took.
 Prediction predict(const std::optional<io::Pose2D> &wheel, const PredictionRecord &by_wheel, const io::Pose2D &velocity,
                    const PredictionRecord &by_velocity) {
   const auto bound = [](const PredictionRecord &r) { return varianceBound(r.squares / std::max(r.steps, 1), r.steps); };
