@@ -13,17 +13,7 @@
 namespace contour_reg {
 namespace {
 
-RegistrationResult registerFrom(const simulation::World &world, const Eigen::Isometry2d &motion, double noise,
-                                unsigned seed) {
-  const ContourFeatures target =
-      extractContourFeatures(test::scanFrom(world, test::pose2d(0, 0, 0), noise, seed), ContourParams{});
-  const ContourFeatures source =
-      extractContourFeatures(test::scanFrom(world, motion, noise, seed + 1000), ContourParams{});
-  std::mt19937 rng(seed);
-  return registerContours(source, target, RegistrationParams{}, rng);
-}
-
-// The same with the scans of `lidar`.
+// Registers the scan `lidar` takes at `motion` onto the one it takes at the origin.
 RegistrationResult registerFrom(const simulation::World &world, const Eigen::Isometry2d &motion,
                                 const simulation::LidarModel &lidar, unsigned seed) {
   std::mt19937 target_noise(seed), source_noise(seed + 1000), rng(seed);
@@ -32,6 +22,14 @@ RegistrationResult registerFrom(const simulation::World &world, const Eigen::Iso
   const ContourFeatures source =
       extractContourFeatures(simulation::simulateScan(world, motion, lidar, source_noise), ContourParams{});
   return registerContours(source, target, RegistrationParams{}, rng);
+}
+
+// The same with the Hokuyo-like LIDAR of `noise` m range noise.
+RegistrationResult registerFrom(const simulation::World &world, const Eigen::Isometry2d &motion, double noise,
+                                unsigned seed) {
+  simulation::LidarModel lidar = simulation::LidarModel::hokuyoUtm30lx();
+  lidar.range_noise = noise;
+  return registerFrom(world, motion, lidar, seed);
 }
 
 // The mean normalised estimation error squared of the converged estimates of 60 seeded motions

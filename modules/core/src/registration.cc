@@ -279,10 +279,11 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
       result.pinned = decision::pinnedPart(judged.best.refined, params.refinement);
     result.status = verdict;
     result.reason += "; " + why;
-    offerRejected(result, rejected(judged.best, scorer));
+    const RejectedMotion best = rejected(judged.best, scorer);
+    offerRejected(result, best);
     if (declined) offerRejected(result, *declined);
     if (verdict == RegistrationStatus::kAmbiguous && judged.rival)
-      result.alternatives = {rejected(judged.best, scorer), rejected(*judged.rival, scorer)};
+      result.alternatives = {best, rejected(*judged.rival, scorer)};
     return;
   }
   const RefinementResult &refined = judged.best.refined;

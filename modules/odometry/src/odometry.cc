@@ -51,6 +51,11 @@ struct PredictionRecord {
   }
 };
 
+// a - b per component (x m, y m, yaw rad), the turn wrapped to (-pi, pi].
+Eigen::Array3d difference(const io::Pose2D &a, const io::Pose2D &b) {
+  return {a.x - b.x, a.y - b.y, std::remainder(a.yaw - b.yaw, 2.0 * M_PI)};
+}
+
 // What the odometry expects of one scan interval, and how far off that can be: per component
 // (x m, y m, yaw rad), the largest variance of the chosen prediction's errors that its record
 // allows (none before the first converged step).
@@ -83,8 +88,7 @@ Prediction predict(const std::optional<io::Pose2D> &wheel, const PredictionRecor
   if (!wheel) return {velocity, bound(by_velocity)};
   if (by_wheel.steps == 0 || by_velocity.steps == 0) return {*wheel, bound(by_wheel)};
   const Eigen::Array3d a = by_wheel.squares / by_wheel.steps, b = by_velocity.squares / by_velocity.steps;
-  const Eigen::Array3d gap(wheel->x - velocity.x, wheel->y - velocity.y,
-                           std::remainder(wheel->yaw - velocity.yaw, 2.0 * M_PI));
+  const Eigen::Array3d gap = difference(*wheel, velocity);
   // Apart by more than their records allow: chi-square with 3 degrees of freedom, 99.9 %.
   if ((gap.square() / (a + b).max(1e-12)).sum() > kChiSquare3) return {*wheel, bound(by_wheel)};
   // Weight of the wheels, per component: 1/a over 1/a + 1/b is b over a + b; the mean squared
@@ -99,24 +103,21 @@ Prediction predict(const std::optional<io::Pose2D> &wheel, const PredictionRecor
 // it allows (chi-square with 3 degrees of freedom, 99.9 %, on the sum of the prediction's
 // and the motion's variance), where the region it allows is too small to hold another
 // motion as far from it as the other alternatives (motionDistance): a motion two periods
-// along a row of doors is as far beyond it as the one a period along. `motions` are over the
-// interval, in the earlier scan's frame, in the order of `alternatives`; none when undecided.
+// along a row of doors is as far beyond it as the one a period along. `motions` are the
+// alternatives over the interval, in the earlier scan's frame; none when undecided.
 std::optional<std::size_t> decideBetween(const Prediction &prediction, const std::vector<io::Pose2D> &motions,
                                          const std::vector<RejectedMotion> &alternatives) {
   if (!prediction.variance || motions.size() < 2) return std::nullopt;
   std::optional<std::size_t> allowed;
   for (std::size_t i = 0; i < motions.size(); ++i) {
-    if (!alternatives[i].covariance.allFinite()) return std::nullopt;
     const Eigen::Array3d variance = *prediction.variance + alternatives[i].covariance.diagonal().array().max(0.0);
-    if (!(variance > 0.0).all()) return std::nullopt;
-    const Eigen::Array3d gap(motions[i].x - prediction.motion.x, motions[i].y - prediction.motion.y,
-                             std::remainder(motions[i].yaw - prediction.motion.yaw, 2.0 * M_PI));
-    if ((gap.square() / variance).sum() > kChiSquare3) continue;
+    if (!(variance > 0.0).all()) return std::nullopt;  // NaN too
+    if ((difference(motions[i], prediction.motion).square() / variance).sum() > kChiSquare3) continue;
     if (allowed) return std::nullopt;  // the prediction allows two
     const Eigen::Array3d half_width = (kChiSquare3 * variance).sqrt();
     const double extent = 2.0 * (std::hypot(half_width(0), half_width(1)) + half_width(2));
     for (std::size_t j = 0; j < motions.size(); ++j)
-      if (j != i && extent >= motionDistance(toMatrix(motions[i]), toMatrix(motions[j]))) return std::nullopt;
+      if (j != i && extent >= motionDistance(alternatives[i].transform, alternatives[j].transform)) return std::nullopt;
     allowed = i;
   }
   return allowed;
@@ -307,12 +308,12 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     }
     // Repeated structure (a row of doors) leaves distinct motions that fit the scans as well;
     // the motion the odometry expects over the interval may allow only one of them.
+    const Prediction expected_motion = predict(wheel, wheel_record, velocity_step, velocity_record);
     if (!match.converged && !match.alternatives.empty()) {
       std::vector<io::Pose2D> motions;
       for (const RejectedMotion &alternative : match.alternatives)
         motions.push_back(between(previous, compose(poses[reference], toPose(alternative.transform))));
-      if (const std::optional<std::size_t> chosen = decideBetween(
-              predict(wheel, wheel_record, velocity_step, velocity_record), motions, match.alternatives)) {
+      if (const std::optional<std::size_t> chosen = decideBetween(expected_motion, motions, match.alternatives)) {
         match.transform = match.alternatives[*chosen].transform;
         match.covariance = match.alternatives[*chosen].covariance;
         match.converged = true;
@@ -345,7 +346,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       run.stats.degenerate += match.status == "degenerate";
       ++run.stats.failure_reasons[match.status];
       run.stats.failed_scans.push_back(k);
-      pose = compose(previous, predict(wheel, wheel_record, velocity_step, velocity_record).motion);
+      pose = compose(previous, expected_motion.motion);
     }
     if (match.converged && wheel) {
       const io::Pose2D found = between(previous, pose);
