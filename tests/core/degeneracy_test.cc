@@ -13,15 +13,23 @@
 namespace contour_reg {
 namespace {
 
-// Registers the scan `lidar` takes at `motion` onto the one it takes at the origin.
-RegistrationResult registerFrom(const simulation::World &world, const Eigen::Isometry2d &motion,
-                                const simulation::LidarModel &lidar, unsigned seed) {
+// Registers the scan `lidar` takes at `motion` in `after` onto the one it takes at the origin
+// in `before`.
+RegistrationResult registerBetween(const simulation::World &before, const simulation::World &after,
+                                   const Eigen::Isometry2d &motion, const simulation::LidarModel &lidar, unsigned seed,
+                                   const RegistrationParams &params = RegistrationParams{}) {
   std::mt19937 target_noise(seed), source_noise(seed + 1000), rng(seed);
   const ContourFeatures target = extractContourFeatures(
-      simulation::simulateScan(world, test::pose2d(0, 0, 0), lidar, target_noise), ContourParams{});
+      simulation::simulateScan(before, test::pose2d(0, 0, 0), lidar, target_noise), ContourParams{});
   const ContourFeatures source =
-      extractContourFeatures(simulation::simulateScan(world, motion, lidar, source_noise), ContourParams{});
-  return registerContours(source, target, RegistrationParams{}, rng);
+      extractContourFeatures(simulation::simulateScan(after, motion, lidar, source_noise), ContourParams{});
+  return registerContours(source, target, params, rng);
+}
+
+// The same in one unchanging world.
+RegistrationResult registerFrom(const simulation::World &world, const Eigen::Isometry2d &motion,
+                                const simulation::LidarModel &lidar, unsigned seed) {
+  return registerBetween(world, world, motion, lidar, seed);
 }
 
 // The same with the Hokuyo-like LIDAR of `noise` m range noise.
@@ -33,16 +41,16 @@ RegistrationResult registerFrom(const simulation::World &world, const Eigen::Iso
 }
 
 // The mean normalised estimation error squared of the converged estimates of 60 seeded motions
-// (up to 0.3 m and 5 deg) in the furnished room, seen by `lidar`.
-double meanNees(const simulation::LidarModel &lidar) {
-  const simulation::World room = simulation::makeFurnishedRoom();
+// (up to 0.3 m and 5 deg) from the room `before` to the room `after`, seen by `lidar`.
+double meanNees(const simulation::World &before, const simulation::World &after, const simulation::LidarModel &lidar,
+                const RegistrationParams &params = RegistrationParams{}) {
   std::mt19937 draw(2024);
   std::uniform_real_distribution<double> shift(-0.3, 0.3), turn(-5.0, 5.0);
   double sum = 0.0;
   int trials = 0;
   for (unsigned seed = 1; seed <= 60; ++seed) {
     const Eigen::Isometry2d motion = test::pose2d(shift(draw), shift(draw), turn(draw));
-    const RegistrationResult r = registerFrom(room, motion, lidar, seed);
+    const RegistrationResult r = registerBetween(before, after, motion, lidar, seed, params);
     if (!r.converged) continue;
     const Eigen::Matrix3d truth = motion.matrix();
     const Eigen::Vector3d error(r.transform(0, 2) - truth(0, 2), r.transform(1, 2) - truth(1, 2),
@@ -53,6 +61,12 @@ double meanNees(const simulation::LidarModel &lidar) {
   }
   EXPECT_GE(trials, 50);
   return sum / std::max(trials, 1);
+}
+
+// The same in the furnished room.
+double meanNees(const simulation::LidarModel &lidar) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  return meanNees(room, room, lidar);
 }
 
 TEST(Degeneracy, SingleWallDoesNotConverge) {
@@ -143,6 +157,30 @@ TEST(Covariance, SparseBeamsCountTheirSharedNoiseOnce) {
   std::printf("average NEES: %.2f\n", nees);
   EXPECT_GT(nees, 2.0);
   EXPECT_LT(nees, 4.5);
+}
+
+// The furnished room with a cart, 0.8 x 0.6 m, whose near side stands at x = `near_side` m.
+simulation::World furnishedRoomWithCartAt(double near_side) {
+  simulation::World world = simulation::makeFurnishedRoom();
+  world.addBox({near_side, 0.4}, {near_side + 0.8, 1.0});
+  return world;
+}
+
+// The mean NEES when the cart has been pushed 5 cm between the scans: a stretch of contour that
+// disagrees with the rest, as a nudged chair or a door left ajar does.
+double meanNeesWithMovedCart(double correlation_length) {
+  RegistrationParams params;
+  params.refinement.correlation_length = correlation_length;
+  return meanNees(furnishedRoomWithCartAt(3.0), furnishedRoomWithCartAt(3.05), simulation::LidarModel::hokuyoUtm30lx(),
+                  params);
+}
+
+TEST(Covariance, StretchesOfContourThatDisagreeWidenIt) {
+  const double with = meanNeesWithMovedCart(RefinementParams{}.correlation_length);
+  const double without = meanNeesWithMovedCart(0.0);
+  std::printf("average NEES with a moved cart: %.2f, %.2f without the stretches' term\n", with, without);
+  EXPECT_LT(with, 4.0);
+  EXPECT_GT(without, 4.5);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
 
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/refinement.h"
@@ -85,6 +86,27 @@ TEST(Refinement, StopsOnceItHasArrivedNearAGivenMotion) {
       refiner.refine(samples, start, RefinementParams{}, [](const Eigen::Matrix3d &) { return false; });
   EXPECT_EQ(never.iterations, full.iterations);
   EXPECT_TRUE(never.transform.isApprox(full.transform));
+}
+
+// The covariance's term for stretches of contour that disagree (correlation_length) changes
+// neither the motion nor any direction's variance downwards; a negative length is invalid.
+TEST(Refinement, TheStretchesTermOnlyWidensTheCovariance) {
+  const RoomPair pair;
+  const ContourRefiner refiner(pair.target, RefinementParams{});
+  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementParams{}.sample_step);
+  const Eigen::Matrix3d start = matrixOf(test::pose2d(0.5, -0.05, 7));
+  RefinementParams without;
+  without.correlation_length = 0.0;
+  const RefinementResult plain = refiner.refine(samples, start, without);
+  const RefinementResult widened = refiner.refine(samples, start, RefinementParams{});
+  EXPECT_TRUE(widened.transform.isApprox(plain.transform));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> added(widened.covariance - plain.covariance);
+  EXPECT_GE(added.eigenvalues().minCoeff(), -1e-12 * plain.covariance.norm());
+  RefinementParams negative;
+  negative.correlation_length = -1.0;
+  std::string why;
+  EXPECT_FALSE(negative.validate(&why));
+  EXPECT_NE(why.find("correlation_length"), std::string::npos);
 }
 
 }  // namespace

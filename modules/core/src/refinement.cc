@@ -21,6 +21,9 @@ namespace {
 struct BearingIndex {
   std::vector<Eigen::Vector2d> points;
   std::vector<int> segment;  // the contour of each point
+  std::vector<int> vertex;   // its vertex number in that contour
+  std::vector<int> contour_size;
+  std::vector<double> contour_step;
   std::vector<double> bearing;
   std::vector<Eigen::Vector2d> normals;  // computeNormal of each point, once per target
   std::vector<char> has_normal;
@@ -39,8 +42,16 @@ struct BearingIndex {
         order.push_back({std::arg(target.contours[k].vertices[n]), {int(k), int(n)}});
     // A scan's contours follow its beams, so the vertices usually come in bearing order already.
     if (!std::is_sorted(order.begin(), order.end())) std::sort(order.begin(), order.end());
+    contour_size.clear();
+    contour_step.clear();
+    for (const EqualizedContour &contour : target.contours) {
+      contour_size.push_back(static_cast<int>(contour.vertices.size()));
+      contour_step.push_back(contour.step);
+    }
     points.clear();
     segment.clear();
+    vertex.clear();
+    vertex.reserve(vertices);
     bearing.clear();
     points.reserve(vertices);
     segment.reserve(vertices);
@@ -52,6 +63,7 @@ struct BearingIndex {
       spacing.push_back(where.second < static_cast<int>(apart.size()) ? apart[where.second] : 0.0);
       points.push_back(toEigen(target.contours[where.first].vertices[where.second]));
       segment.push_back(where.first);
+      vertex.push_back(where.second);
       bearing.push_back(b);
     }
     normals.assign(points.size(), Eigen::Vector2d::Zero());
@@ -110,6 +122,32 @@ double rmsRange(double lever_squares, double weight_sum) {
   return std::sqrt(lever_squares / std::max(weight_sum, 1e-12));
 }
 
+// The covariance widened to cover how the stretches of contour disagree: the cluster-robust
+// (sandwich) covariance hessian^-1 M hessian^-1, M the sum of each stretch's gradient times its
+// transpose (scaled by G / (G - 3) for the 3 fitted parameters), wherever it exceeds
+// `covariance`. Residuals of one stretch may share any error; stretches are taken as
+// independent. With fewer than 6 stretches paired the sandwich says too little: unchanged.
+Eigen::Matrix3d widenByStretches(const Eigen::Matrix3d &covariance, const Eigen::Matrix3d &hessian,
+                                 const std::vector<Eigen::Vector3d> &stretch_gradient) {
+  Eigen::Matrix3d meat = Eigen::Matrix3d::Zero();
+  int stretches = 0;
+  for (const Eigen::Vector3d &g : stretch_gradient) {
+    if (g.isZero(0.0)) continue;
+    meat += g * g.transpose();
+    ++stretches;
+  }
+  Eigen::Matrix3d bread;
+  bool invertible = false;
+  hessian.computeInverseWithCheck(bread, invertible);
+  if (stretches < 6 || !invertible) return covariance;
+  const Eigen::Matrix3d sandwich = bread * meat * bread * (double(stretches) / double(stretches - 3));
+  const Eigen::Matrix3d excess = 0.5 * (sandwich - covariance + (sandwich - covariance).transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(excess);
+  return covariance +
+         eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, double sample_step) {
@@ -145,11 +183,32 @@ bool RefinementParams::validate(std::string *why) const {
     return invalid(why, "refinement.stop_translation and stop_rotation must be >= 0");
   if (!(covariance_scale > 0.0)) return invalid(why, "refinement.covariance_scale must be > 0");
   if (!(turn_noise >= 0.0)) return invalid(why, "refinement.turn_noise must be >= 0");
+  if (!(correlation_length >= 0.0)) return invalid(why, "refinement.correlation_length must be >= 0");
   return true;
 }
 
 struct ContourRefiner::Index {
   BearingIndex bearing;
+  // The stretch of `stretch_length` m of target contour each indexed point lies on, numbered
+  // over all contours (widenByStretches), and each stretch's gradient: working memory.
+  double stretch_length = -1.0;
+  std::vector<int> stretch;
+  int stretches = 0;
+  std::vector<Eigen::Vector3d> stretch_gradient;
+
+  void numberStretches(double length) {
+    std::vector<int> first(bearing.contour_size.size() + 1, 0), span(bearing.contour_size.size(), 1);
+    for (std::size_t k = 0; k < span.size(); ++k) {
+      const double step = bearing.contour_step[k];
+      if (step > 0.0) span[k] = std::max(1, static_cast<int>(std::lround(length / step)));
+      first[k + 1] = first[k] + (bearing.contour_size[k] + span[k] - 1) / span[k];
+    }
+    stretch.resize(bearing.points.size());
+    for (std::size_t j = 0; j < stretch.size(); ++j)
+      stretch[j] = first[bearing.segment[j]] + bearing.vertex[j] / span[bearing.segment[j]];
+    stretches = first.back();
+    stretch_length = length;
+  }
 };
 
 ContourRefiner::ContourRefiner() : index_(std::make_unique<Index>()) {}
@@ -159,7 +218,10 @@ ContourRefiner::ContourRefiner(const ContourFeatures &target, const RefinementPa
   setTarget(target);
 }
 
-void ContourRefiner::setTarget(const ContourFeatures &target) { index_->bearing.build(target); }
+void ContourRefiner::setTarget(const ContourFeatures &target) {
+  index_->bearing.build(target);
+  index_->stretch_length = -1.0;
+}
 
 ContourRefiner::~ContourRefiner() = default;
 
@@ -196,6 +258,15 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   double lever_squares =
       0.0;  // sum of |rotated source point|^2: the rotation information if every normal were tangential
   double distance = params.max_distance;
+  // Each stretch's share of the gradient, for the covariance (widenByStretches): counted in
+  // the passes at the smallest pairing distance, where a refinement ends unless stopped early.
+  const bool by_stretches = params.correlation_length > 0.0;
+  bool stretches_counted = false;
+  Index &work = *index_;
+  if (by_stretches && work.stretch_length != params.correlation_length) work.numberStretches(params.correlation_length);
+  std::vector<Eigen::Vector3d> &stretch_gradient = work.stretch_gradient;
+  stretch_gradient.resize(by_stretches ? work.stretches : 0);
+  const int *stretch = work.stretch.data();
   for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
     result.iterations = iteration + 1;
     const Eigen::Rotation2Dd rotation(yaw);
@@ -206,6 +277,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     lever_squares = 0.0;
     weight_sum = 0.0;
     int pairs = 0;
+    stretches_counted = by_stretches && distance <= params.min_distance;
+    if (stretches_counted) std::fill(stretch_gradient.begin(), stretch_gradient.end(), Eigen::Vector3d::Zero());
     for (const Eigen::Vector2d &p : samples) {
       const Eigen::Vector2d rotated = rotation * p;
       const Eigen::Vector2d moved = rotated + translation;
@@ -236,7 +309,9 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       }
       lever_squares += weight * rotated.squaredNorm();
       weight_sum += weight;
-      g += weight * residual * jacobian;
+      const Eigen::Vector3d gradient = weight * residual * jacobian;
+      g += gradient;
+      if (stretches_counted) stretch_gradient[stretch[j]] += gradient;
       weighted_squares += weight * residual * residual;
       ++pairs;
     }
@@ -292,6 +367,16 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(counted_information);
     if (lu.isInvertible()) {
       result.covariance = params.covariance_scale * sigma2 * lu.inverse();
+      if (stretches_counted && sigma2 > 0.0) {
+        const Eigen::Matrix3d widened = widenByStretches(result.covariance, information, stretch_gradient);
+        if (widened != result.covariance) {
+          result.covariance = widened;
+          bool invertible = false;
+          Eigen::Matrix3d inverse;
+          widened.computeInverseWithCheck(inverse, invertible);
+          if (invertible) result.information = inverse;
+        }
+      }
       const double turn = params.turn_noise * std::abs(yawOf(result.transform));
       result.covariance(2, 2) += turn * turn;
     }

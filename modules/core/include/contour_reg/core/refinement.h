@@ -40,7 +40,7 @@ struct RefinementParams {
   /// equalization interpolates them), so their residuals are correlated: H counts the samples
   /// between two raw returns farther apart than sample_step once per sample_step of their
   /// spacing, and this scale covers the correlation that remains where returns are dense
-  /// (mean normalised error squared 2.1-3.1 on simulated rooms, tests/core/degeneracy_test.cc).
+  /// (mean normalised error squared 2.0-2.8 on simulated rooms, tests/core/degeneracy_test.cc).
   double covariance_scale = 1.25;
   /// rad of yaw standard deviation per rad of turn, added to the covariance in quadrature:
   /// errors that grow with the turn and that the contours cannot show (a scan skewed by the
@@ -48,6 +48,12 @@ struct RefinementParams {
   /// error's standard deviation grows from 0.39 deg for turns under 5 deg to 0.66 deg for
   /// turns of 20-45 deg (fr079): about 2 % of the turn.
   double turn_noise = 0.02;
+  /// m of target contour over which residuals are taken to share their errors (a wall's
+  /// surface, a repeated detail, a bias of the scene). The covariance also covers how the
+  /// stretches of this length disagree with one another: the cluster-robust (sandwich) estimate
+  /// H^-1 (sum over stretches of g g^T) H^-1, g a stretch's gradient at the estimate, adds where
+  /// it exceeds the covariance above (docs/reliability.md). 0: off.
+  double correlation_length = 1.0;
 
   bool validate(std::string *why = nullptr) const;
 };
@@ -97,6 +103,7 @@ RefinementResult refineOnContours(const ContourFeatures &source, const ContourFe
                                   const Eigen::Matrix3d &initial, const RefinementParams &params);
 
 /// Refines several starting motions against one target, whose search index it builds once.
+/// It keeps working memory: one refiner serves one thread at a time.
 class ContourRefiner {
  public:
   /// A refiner without a target: every refinement returns its start until setTarget().
