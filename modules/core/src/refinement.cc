@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include <Eigen/Dense>
 
@@ -122,13 +123,24 @@ double rmsRange(double lever_squares, double weight_sum) {
   return std::sqrt(lever_squares / std::max(weight_sum, 1e-12));
 }
 
+// Adds the upper triangle of a b^T to m; the lower is mirrored once after a pass.
+inline void addUpperTriangle(Eigen::Matrix3d &m, const Eigen::Vector3d &a, const Eigen::Vector3d &b) {
+  m(0, 0) += a(0) * b(0);
+  m(0, 1) += a(0) * b(1);
+  m(0, 2) += a(0) * b(2);
+  m(1, 1) += a(1) * b(1);
+  m(1, 2) += a(1) * b(2);
+  m(2, 2) += a(2) * b(2);
+}
+
 // The covariance widened to cover how the stretches of contour disagree: the cluster-robust
 // (sandwich) covariance hessian^-1 M hessian^-1, M the sum of each stretch's gradient times its
 // transpose (scaled by G / (G - 3) for the 3 fitted parameters), wherever it exceeds
 // `covariance`. Residuals of one stretch may share any error; stretches are taken as
-// independent. With fewer than 6 stretches paired the sandwich says too little: unchanged.
-Eigen::Matrix3d widenByStretches(const Eigen::Matrix3d &covariance, const Eigen::Matrix3d &hessian,
-                                 const std::vector<Eigen::Vector3d> &stretch_gradient) {
+// independent. None where nothing is added, or with fewer than 6 stretches paired (the
+// sandwich says too little then).
+std::optional<Eigen::Matrix3d> widenByStretches(const Eigen::Matrix3d &covariance, const Eigen::Matrix3d &hessian,
+                                                const std::vector<Eigen::Vector3d> &stretch_gradient) {
   Eigen::Matrix3d meat = Eigen::Matrix3d::Zero();
   int stretches = 0;
   for (const Eigen::Vector3d &g : stretch_gradient) {
@@ -139,11 +151,12 @@ Eigen::Matrix3d widenByStretches(const Eigen::Matrix3d &covariance, const Eigen:
   Eigen::Matrix3d bread;
   bool invertible = false;
   hessian.computeInverseWithCheck(bread, invertible);
-  if (stretches < 6 || !invertible) return covariance;
+  if (stretches < 6 || !invertible) return std::nullopt;
   const Eigen::Matrix3d sandwich = bread * meat * bread * (double(stretches) / double(stretches - 3));
   const Eigen::Matrix3d excess = 0.5 * (sandwich - covariance + (sandwich - covariance).transpose());
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   eigen.computeDirect(excess);
+  if (!(eigen.eigenvalues().maxCoeff() > 0.0)) return std::nullopt;
   return covariance +
          eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
 }
@@ -289,24 +302,12 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       const double weight = std::abs(residual) <= params.huber ? 1.0 : params.huber / std::abs(residual);
       const Eigen::Vector3d jacobian(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rotated.y(), rotated.x())));
       const Eigen::Vector3d weighted = weight * jacobian;
-      h(0, 0) += weighted(0) * jacobian(0);  // the upper triangle; the lower is mirrored after the pass
-      h(0, 1) += weighted(0) * jacobian(1);
-      h(0, 2) += weighted(0) * jacobian(2);
-      h(1, 1) += weighted(1) * jacobian(1);
-      h(1, 2) += weighted(1) * jacobian(2);
-      h(2, 2) += weighted(2) * jacobian(2);
+      addUpperTriangle(h, weighted, jacobian);
       // Samples between the same two raw returns share their noise: together they carry the
       // information of one sample per sample_step of the returns' spacing, so each counts
       // sample_step / spacing of its weight (`surplus` holds the rest).
-      if (index.spacing[j] > params.sample_step) {
-        const Eigen::Vector3d uncounted = (1.0 - params.sample_step / index.spacing[j]) * weighted;
-        surplus(0, 0) += uncounted(0) * jacobian(0);
-        surplus(0, 1) += uncounted(0) * jacobian(1);
-        surplus(0, 2) += uncounted(0) * jacobian(2);
-        surplus(1, 1) += uncounted(1) * jacobian(1);
-        surplus(1, 2) += uncounted(1) * jacobian(2);
-        surplus(2, 2) += uncounted(2) * jacobian(2);
-      }
+      if (index.spacing[j] > params.sample_step)
+        addUpperTriangle(surplus, (1.0 - params.sample_step / index.spacing[j]) * weighted, jacobian);
       lever_squares += weight * rotated.squaredNorm();
       weight_sum += weight;
       const Eigen::Vector3d gradient = weight * residual * jacobian;
@@ -368,12 +369,12 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     if (lu.isInvertible()) {
       result.covariance = params.covariance_scale * sigma2 * lu.inverse();
       if (stretches_counted && sigma2 > 0.0) {
-        const Eigen::Matrix3d widened = widenByStretches(result.covariance, information, stretch_gradient);
-        if (widened != result.covariance) {
-          result.covariance = widened;
+        if (const std::optional<Eigen::Matrix3d> widened =
+                widenByStretches(result.covariance, information, stretch_gradient)) {
+          result.covariance = *widened;
           bool invertible = false;
           Eigen::Matrix3d inverse;
-          widened.computeInverseWithCheck(inverse, invertible);
+          widened->computeInverseWithCheck(inverse, invertible);
           if (invertible) result.information = inverse;
         }
       }
