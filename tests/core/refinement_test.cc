@@ -109,5 +109,23 @@ TEST(Refinement, TheStretchesTermOnlyWidensTheCovariance) {
   EXPECT_NE(why.find("correlation_length"), std::string::npos);
 }
 
+// The refinement stops only after a pass that paired at min_distance: a start already at the
+// motion (its steps small from the first pass) still reports the overlap, rmse and covariance,
+// stretches term included, of the final pairing distance.
+TEST(Refinement, AStartAtTheMotionStillEndsWithAPassAtTheFinalPairingDistance) {
+  const test::RoomWithBoxes room;
+  const Eigen::Isometry2d motion = test::pose2d(0.4, -0.2, 5);
+  const ContourFeatures target =
+      extractContourFeatures(test::scanFrom(room.world, test::pose2d(0, 0, 0), 0.001, 3), ContourParams{});
+  const ContourFeatures source = extractContourFeatures(test::scanFrom(room.world, motion, 0.001, 4), ContourParams{});
+  const ContourRefiner refiner(target, RefinementParams{});
+  const std::vector<Eigen::Vector2d> samples = contourSamples(source, RefinementParams{}.sample_step);
+  Eigen::Matrix3d start = matrixOf(motion);
+  for (int k = 0; k < 3; ++k) start = refiner.refine(samples, start, RefinementParams{}).transform;
+  const RefinementResult at_motion = refiner.refine(samples, start, RefinementParams{});
+  // 0.3 m shrinking by 0.7 per pass reaches 0.08 m in the fifth pass.
+  EXPECT_GE(at_motion.iterations, 5);
+}
+
 }  // namespace
 }  // namespace contour_reg

@@ -238,14 +238,17 @@ TEST(ContourRegistration, PclSettersDriveTheSettingsTheyName) {
   ASSERT_TRUE(one_step->hasConverged());
   EXPECT_GT(one_step->getResult().contour_rmse, defaults->getResult().contour_rmse);
 
-  // The transformation epsilon: a 10 cm stop ends the refinement at the first step below it.
+  // The transformation epsilon: a 10 cm stop ends the refinement at the first step below it
+  // that paired at the final distance (here the only one, 8 cm, from the first step on).
+  const auto fixed_distance = run([](Contour &r) { r.setMaxCorrespondenceDistance(0.08); });
   const auto loose = run([](Contour &r) {
+    r.setMaxCorrespondenceDistance(0.08);
     r.setTransformationEpsilon(0.1 * 0.1);
     r.setTransformationRotationEpsilon(std::cos(0.1));
   });
   EXPECT_DOUBLE_EQ(loose->getRegistrationParams().refinement.stop_translation, 0.1);
   EXPECT_NEAR(loose->getRegistrationParams().refinement.stop_rotation, 0.1, 1e-9);
-  EXPECT_FALSE(loose->getFinalTransformation().isApprox(defaults->getFinalTransformation(), 1e-7f));
+  EXPECT_FALSE(loose->getFinalTransformation().isApprox(fixed_distance->getFinalTransformation(), 1e-7f));
 
   // Documented as having no effect: the Euclidean fitness epsilon.
   const auto fitness = run([](Contour &r) { r.setEuclideanFitnessEpsilon(1.0); });

@@ -343,10 +343,10 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     x += step(0);
     y += step(1);
     yaw += step(2);
+    const bool at_min_distance = distance <= params.min_distance;  // this pass paired at the smallest distance
     distance = std::max(params.min_distance, distance * 0.7);
     if (arrived && arrived(rigidTransform(x, y, yaw))) break;
-    if (step.head<2>().norm() < params.stop_translation && std::abs(step(2)) < params.stop_rotation &&
-        distance <= params.min_distance)
+    if (step.head<2>().norm() < params.stop_translation && std::abs(step(2)) < params.stop_rotation && at_min_distance)
       break;
   }
   result.transform = rigidTransform(x, y, yaw);
