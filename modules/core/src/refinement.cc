@@ -29,6 +29,7 @@ struct BearingIndex {
   std::vector<Eigen::Vector2d> normals;  // computeNormal of each point, once per target
   std::vector<char> has_normal;
   std::vector<double> spacing;                                // m between the raw returns the point lies between
+  std::vector<char> at_end;                                   // the first or last vertex of its contour
   std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (contour, vertex): kept for the next build
   BearingBuckets buckets;
 
@@ -59,7 +60,10 @@ struct BearingIndex {
     bearing.reserve(vertices);
     spacing.clear();
     spacing.reserve(vertices);
+    at_end.clear();
+    at_end.reserve(vertices);
     for (const auto &[b, where] : order) {
+      at_end.push_back(where.second == 0 || where.second + 1 == contour_size[where.first]);
       const std::vector<double> &apart = target.contours[where.first].spacing;
       spacing.push_back(where.second < static_cast<int>(apart.size()) ? apart[where.second] : 0.0);
       points.push_back(toEigen(target.contours[where.first].vertices[where.second]));
@@ -265,7 +269,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   if (samples.empty() || index.points.empty()) return result;
 
   double x = initial(0, 2), y = initial(1, 2), yaw = yawOf(initial);
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero(), counted_information = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero(), counted_information = Eigen::Matrix3d::Zero(),
+                  step_information = Eigen::Matrix3d::Zero();
   double weighted_squares = 0.0;
   double weight_sum = 0.0;
   double lever_squares =
@@ -284,8 +289,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.iterations = iteration + 1;
     const Eigen::Rotation2Dd rotation(yaw);
     const Eigen::Vector2d translation(x, y);
-    Eigen::Matrix3d h = Eigen::Matrix3d::Zero(), surplus = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero(), surplus = Eigen::Matrix3d::Zero(), step_h = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d step_g = Eigen::Vector3d::Zero();
     weighted_squares = 0.0;
     lever_squares = 0.0;
     weight_sum = 0.0;
@@ -306,39 +311,51 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       // Samples between the same two raw returns share their noise: together they carry the
       // information of one sample per sample_step of the returns' spacing, so each counts
       // sample_step / spacing of its weight (`surplus` holds the rest).
-      if (index.spacing[j] > params.sample_step)
-        addUpperTriangle(surplus, (1.0 - params.sample_step / index.spacing[j]) * weighted, jacobian);
+      const double share = index.spacing[j] > params.sample_step ? params.sample_step / index.spacing[j] : 1.0;
+      if (share < 1.0) addUpperTriangle(surplus, (1.0 - share) * weighted, jacobian);
       lever_squares += weight * rotated.squaredNorm();
       weight_sum += weight;
       const Eigen::Vector3d gradient = weight * residual * jacobian;
-      g += gradient;
-      if (stretches_counted) stretch_gradient[stretch[j]] += gradient;
+      // The step weighs each pair as the covariance counts it. A target vertex that ends its
+      // contour is where the target's view of that surface ended (an occlusion, the range
+      // limit): the source sample paired with it may lie on surface the target never saw, so
+      // the pair counts for the overlap and the information but does not move the estimate.
+      if (!index.at_end[j]) {
+        step_g += share * gradient;
+        addUpperTriangle(step_h, share * weighted, jacobian);
+        if (stretches_counted) stretch_gradient[stretch[j]] += share * gradient;
+      }
       weighted_squares += weight * residual * residual;
       ++pairs;
     }
     h.triangularView<Eigen::StrictlyLower>() = h.transpose();
     surplus.triangularView<Eigen::StrictlyLower>() = surplus.transpose();
+    step_h.triangularView<Eigen::StrictlyLower>() = step_h.transpose();
     result.pairs = pairs;
     result.overlap = static_cast<double>(pairs) / static_cast<double>(samples.size());
     result.rmse = pairs > 0 ? std::sqrt(weighted_squares / pairs) : 0.0;
     information = h;
     counted_information = h - surplus;
+    step_information = step_h;
     if (pairs < 6) break;
     // Solve only along well-constrained directions, rotation measured in metres of arc.
     result.rms_range = rmsRange(lever_squares, weight_sum);
     const Eigen::Vector3d unit = arcUnits(result.rms_range);
     const Eigen::Matrix3d scaled_h = unit.asDiagonal() * h * unit.asDiagonal();
-    const Eigen::Vector3d scaled_g = unit.asDiagonal() * g;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
     eigen.computeDirect(scaled_h);  // closed form for 3 x 3: scaled_h is in one unit, well scaled
     const Eigen::Vector3d values = eigen.eigenvalues();
     result.weakest_direction = unit.asDiagonal() * eigen.eigenvectors().col(0);
-    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();  // projector on the constrained directions
     for (int k = 0; k < 3; ++k) {
       if (values(k) <= params.degeneracy_ratio * values(2)) continue;
       const Eigen::Vector3d v = eigen.eigenvectors().col(k);
-      step -= v * (v.dot(scaled_g) / values(k));
+      pinned += v * v.transpose();
     }
+    const Eigen::Matrix3d scaled_step_h = unit.asDiagonal() * step_h * unit.asDiagonal();
+    const Eigen::Matrix3d system = pinned * scaled_step_h * pinned + (Eigen::Matrix3d::Identity() - pinned);
+    Eigen::Vector3d step = pinned * system.ldlt().solve(-pinned * (unit.asDiagonal() * step_g));
+    if (!step.allFinite()) step.setZero();
     step = unit.asDiagonal() * step;
     x += step(0);
     y += step(1);
@@ -370,7 +387,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       result.covariance = params.covariance_scale * sigma2 * lu.inverse();
       if (stretches_counted && sigma2 > 0.0) {
         if (const std::optional<Eigen::Matrix3d> widened =
-                widenByStretches(result.covariance, information, stretch_gradient)) {
+                widenByStretches(result.covariance, step_information, stretch_gradient)) {
           result.covariance = *widened;
           bool invertible = false;
           Eigen::Matrix3d inverse;

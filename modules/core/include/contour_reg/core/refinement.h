@@ -41,7 +41,7 @@ struct RefinementParams {
   /// between two raw returns farther apart than sample_step once per sample_step of their
   /// spacing, and this scale covers the correlation that remains where returns are dense
   /// (mean normalised error squared 2.0-2.8 on simulated rooms, tests/core/degeneracy_test.cc).
-  double covariance_scale = 1.25;
+  double covariance_scale = 1.2;
   /// rad of yaw standard deviation per rad of turn, added to the covariance in quadrature:
   /// errors that grow with the turn and that the contours cannot show (a scan skewed by the
   /// turn made while it was taken, a beam-angle scale). On the real relation logs the yaw
