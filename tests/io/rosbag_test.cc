@@ -90,6 +90,29 @@ TEST(Rosbag, WheelOdometryBetweenTheScansReadsBack) {
   EXPECT_NEAR(read.entries[1].odometry->x, 0.3, 1e-9);
 }
 
+// A topic named for the scans or the odometry that the bag does not carry is an error naming
+// the file, the topic and the topics of that type it does carry: a mistyped odometry topic must
+// not read as a log without wheel odometry.
+TEST(Rosbag, ANamedTopicTheBagDoesNotCarryIsAnError) {
+  if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
+  test::TempDir dir;
+  const std::string path = (dir.path() / "topics.bag").string();
+  writeRosbag(path, timedLog());
+  for (const bool odometry : {true, false}) {
+    RosbagOptions options;
+    (odometry ? options.odometry_topic : options.scan_topic) = "/wheels";
+    try {
+      readRosbag(path, options);
+      FAIL() << (odometry ? "odometry" : "scan") << " topic /wheels accepted";
+    } catch (const ReadError &error) {
+      const std::string what = error.what();
+      EXPECT_NE(what.find(path), std::string::npos) << what;
+      EXPECT_NE(what.find("/wheels"), std::string::npos) << what;
+      EXPECT_NE(what.find(odometry ? "/odom" : "/scan"), std::string::npos) << what;
+    }
+  }
+}
+
 // The laser's mounting is the static transform from the odometry's child frame (base_link) to
 // the scan's frame; a bag without one has none.
 TEST(Rosbag, TheMountingComesFromTheStaticTransforms) {

@@ -34,9 +34,18 @@ std::vector<std::string> topicsOfType(const rosbag::Bag &bag, const std::string 
   return topics;
 }
 
-std::string firstTopicOfType(const rosbag::Bag &bag, const std::string &type) {
+// The topic the options name, or the bag's first of `type` when they name none. A named topic
+// the bag does not carry with that type is an error, so that a mistyped name is not read as a
+// bag without those messages.
+std::string topicToRead(const rosbag::Bag &bag, const std::string &path, const std::string &named,
+                        const std::string &type) {
   const std::vector<std::string> topics = topicsOfType(bag, type);
-  return topics.empty() ? std::string() : topics.front();
+  if (named.empty()) return topics.empty() ? std::string() : topics.front();
+  if (std::find(topics.begin(), topics.end(), named) != topics.end()) return named;
+  std::string carried;
+  for (const std::string &topic : topics) carried += (carried.empty() ? "" : ", ") + topic;
+  throw ReadError(path + ": no " + type + " topic " + named + " in the bag (" +
+                  (carried.empty() ? "it has none" : "it has " + carried) + ")");
 }
 
 std::string frameName(std::string name) { return name.empty() || name[0] != '/' ? name : name.substr(1); }
@@ -117,10 +126,8 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   std::string scan_frame, base_frame;  // of the first scan and the first odometry message
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
-    const std::string scan_topic =
-        options.scan_topic.empty() ? firstTopicOfType(bag, "sensor_msgs/LaserScan") : options.scan_topic;
-    const std::string odometry_topic =
-        options.odometry_topic.empty() ? firstTopicOfType(bag, "nav_msgs/Odometry") : options.odometry_topic;
+    const std::string scan_topic = topicToRead(bag, path, options.scan_topic, "sensor_msgs/LaserScan");
+    const std::string odometry_topic = topicToRead(bag, path, options.odometry_topic, "nav_msgs/Odometry");
     if (scan_topic.empty()) throw ReadError(path + ": no sensor_msgs/LaserScan topic in the bag");
     std::vector<std::string> topics{scan_topic};
     if (!odometry_topic.empty()) topics.push_back(odometry_topic);

@@ -30,7 +30,8 @@ struct RosbagOptions {
 bool rosbagSupported();
 
 /// Reads the scans and odometry of a bag. Throws ReadError naming the file when it
-/// cannot be opened or decoded, has no scan topic, or this build cannot read bags.
+/// cannot be opened or decoded, has no scan topic, does not carry a topic the options name
+/// (with the message type it needs), or this build cannot read bags.
 ScanLog readRosbag(const std::string &path, const RosbagOptions &options = {});
 
 /// Writes the log as a ROS 1 bag the way a LIDAR driver and a robot base record one: every
