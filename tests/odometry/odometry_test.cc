@@ -436,6 +436,30 @@ TEST(Odometry, InACorridorTheWheelsGiveTheAxisAndTheScansTheRest) {
             2.0 * std::abs(c.fused.trajectory.back().pose.y - last_truth.y));
 }
 
+// From a zero guess too, a step the scans leave free along the corridor's axis is fused with
+// the wheels' increment by what the scans pin, rather than bridged whole by the wheels: the
+// heading and the cross-axis position stay the scans'.
+TEST(Odometry, FromAZeroGuessTheWheelsGiveOnlyTheAxisOfStepsTheScansLeaveFree) {
+  const simulation::World corridor = test::bareCorridor(100.0);
+  simulation::RunSettings settings;
+  settings.odometry_noise = 0.15;
+  settings.seed = 7;
+  const simulation::SimulatedRun sim =
+      simulation::simulateRun(corridor, {{0.0, 0.0}, {3.0, 0.0}, {5.0, 0.5}, {9.0, 0.5}}, settings);
+  auto matcher = makeScanMatcher("contour");
+  const OdometryRun run = runOdometry(sim.log, *matcher);  // zero guess, fusion on (the defaults)
+  const std::size_t steps = run.stats.registrations;
+  EXPECT_GE(run.stats.pinned_by_wheels, steps * 9 / 10);
+  EXPECT_LE(run.stats.failures, steps / 10);
+  ASSERT_EQ(run.trajectory.size(), sim.ground_truth.size());
+  for (std::size_t k = 0; k < run.trajectory.size(); ++k) {
+    const io::Pose2D truth = io::between(sim.ground_truth[0].pose, sim.ground_truth[k].pose);
+    const io::Pose2D &pose = run.trajectory[k].pose;
+    EXPECT_LT(std::abs(std::remainder(pose.yaw - truth.yaw, 2 * M_PI)), 0.3 * M_PI / 180.0) << "scan " << k;
+    EXPECT_LT(std::abs(pose.y - truth.y), 0.02) << "scan " << k;
+  }
+}
+
 // The fused steps' covariance describes their errors on a simulated run whose wheels follow the
 // model: the office's S path, the wheel noise as the simulator makes it (2 % of each increment,
 // 0.4 % of a radian per metre in heading); mean normalised error squared near 3 (x, y, yaw).

@@ -322,8 +322,12 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
         ++run.stats.decided_by_prediction;
       }
     }
-    if (options.guess == GuessSource::kOdometry && options.fuse_wheel_odometry && entries[reference].odometry &&
-        entries[k].odometry) {
+    // The wheels are fused with every registration when they are the guess, and otherwise with
+    // those that leave a direction free: there they decide that direction only, where a bridge
+    // would take the whole step from them.
+    const bool leaves_a_direction_free = match.pinned && (!match.converged || match.degenerate);
+    if ((options.guess == GuessSource::kOdometry || leaves_a_direction_free) && options.fuse_wheel_odometry &&
+        entries[reference].odometry && entries[k].odometry) {
       const Fused fused =
           fuseWithWheels(match, *wheelMotion(log, entries[reference], entries[k]),
                          wheelMotionCovariance(log, entries[reference], entries[k], options.wheel_noise));

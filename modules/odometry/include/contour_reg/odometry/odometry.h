@@ -61,10 +61,11 @@ struct OdometryOptions {
   /// With the wheel odometry as the guess, each contour registration is fused with the wheels'
   /// increment over the same interval (wheel_fusion.h): a converged one by its covariance, one
   /// that leaves a direction free (an unconstrained verdict, a degenerate estimate) by what it
-  /// pins (MatchResult::pinned), so that the wheels decide that direction only. The two must
-  /// agree within their uncertainties (chi-square, 99.9 %); where they do not, the scans' answer
-  /// stands, or the scan stays failed. Other methods, and scans without odometry, are chained as
-  /// they are.
+  /// pins (MatchResult::pinned), so that the wheels decide that direction only. With another
+  /// guess, only those that leave a direction free are fused: a bridge would take the whole
+  /// step from the wheels. The two must agree within their uncertainties (chi-square, 99.9 %);
+  /// where they do not, the scans' answer stands, or the scan stays failed. Other methods, and
+  /// scans without odometry, are chained as they are.
   bool fuse_wheel_odometry = true;
   WheelNoise wheel_noise;  ///< the wheels' error model for the fusion
   /// Scans that carry beam timing (LaserScan::time_increment), the first one included, are
