@@ -182,8 +182,9 @@ inline odometry::GuessSource guessSource(const std::string &name) { return odome
 /// --wheel-fusion / --no-wheel-fusion and --wheel-noise: the wheel odometry as a prior (wheel_fusion.h).
 inline void addWheelFusionOptions(CLI::App &command, bool &fuse, odometry::WheelNoise &noise) {
   command.add_flag("--wheel-fusion,!--no-wheel-fusion", fuse,
-                   "With --guess odom, fuse each contour registration with the wheel odometry by covariance; the "
-                   "wheels decide the directions the scans leave free (on by default)");
+                   "Fuse contour registrations with the wheel odometry by covariance: with --guess odom each one, "
+                   "with another guess those that leave a direction free; the wheels decide that direction only "
+                   "(on by default)");
   command
       .add_option_function<std::vector<double>>(
           "--wheel-noise",
