@@ -62,7 +62,8 @@ void bindOdometry(py::module_ &m) {
           "their record)")
       .def_property_readonly(
           "fused", [](const odometry::OdometryRun &r) { return r.stats.fused; },
-          "registrations fused with the wheel odometry (guess 'odom', wheel_fusion)")
+          "registrations fused with the wheel odometry (wheel_fusion: all with guess 'odom', those that leave a "
+          "direction free with another guess)")
       .def_property_readonly(
           "pinned_by_wheels", [](const odometry::OdometryRun &r) { return r.stats.pinned_by_wheels; },
           "of those, the ones whose scans left a direction free (a corridor's axis)")
@@ -96,7 +97,8 @@ void bindOdometry(py::module_ &m) {
         "timing are deskewed by the motion over each (the wheel odometry when the log has it). frame: 'robot' gives "
         "the robot's trajectory when the log knows the laser's mounting (Log.laser_pose), 'laser' the laser's. "
         "wheel_fusion: with guess 'odom', each contour registration is fused with the wheels' increment by "
-        "covariance, the wheels deciding the directions the scans leave free (fused steps count as converged). "
+        "covariance, the wheels deciding the directions the scans leave free; with another guess, only those that "
+        "leave a direction free (fused steps count as converged). "
         "Keyword settings as register(). Releases the GIL.");
 }
 
