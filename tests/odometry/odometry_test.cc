@@ -379,16 +379,19 @@ TEST(Odometry, ThePredictedMotionDecidesBetweenMotionsAPeriodApart) {
 // noisy wheels: the scans pin the cross-axis position and the heading but not the position
 // along the axis. Fused, the trajectory keeps the wheels' motion along the axis and the scans'
 // across it and in heading; without fusion every step fails and the wheels' drift is all there is.
+simulation::SimulatedRun corridorDrive() {
+  const simulation::World corridor = test::bareCorridor(100.0);
+  simulation::RunSettings settings;
+  settings.odometry_noise = 0.15;
+  settings.seed = 7;
+  return simulation::simulateRun(corridor, {{0.0, 0.0}, {3.0, 0.0}, {5.0, 0.5}, {9.0, 0.5}}, settings);
+}
 struct CorridorRun {
   simulation::SimulatedRun run;
   OdometryRun fused, unfused;
 };
 CorridorRun corridorRun() {
-  const simulation::World corridor = test::bareCorridor(100.0);
-  simulation::RunSettings settings;
-  settings.odometry_noise = 0.15;
-  settings.seed = 7;
-  CorridorRun c{simulation::simulateRun(corridor, {{0.0, 0.0}, {3.0, 0.0}, {5.0, 0.5}, {9.0, 0.5}}, settings), {}, {}};
+  CorridorRun c{corridorDrive(), {}, {}};
   auto matcher = makeScanMatcher("contour");
   OdometryOptions options;
   options.guess = GuessSource::kOdometry;
@@ -440,12 +443,7 @@ TEST(Odometry, InACorridorTheWheelsGiveTheAxisAndTheScansTheRest) {
 // the wheels' increment by what the scans pin, rather than bridged whole by the wheels: the
 // heading and the cross-axis position stay the scans'.
 TEST(Odometry, FromAZeroGuessTheWheelsGiveOnlyTheAxisOfStepsTheScansLeaveFree) {
-  const simulation::World corridor = test::bareCorridor(100.0);
-  simulation::RunSettings settings;
-  settings.odometry_noise = 0.15;
-  settings.seed = 7;
-  const simulation::SimulatedRun sim =
-      simulation::simulateRun(corridor, {{0.0, 0.0}, {3.0, 0.0}, {5.0, 0.5}, {9.0, 0.5}}, settings);
+  const simulation::SimulatedRun sim = corridorDrive();
   auto matcher = makeScanMatcher("contour");
   const OdometryRun run = runOdometry(sim.log, *matcher);  // zero guess, fusion on (the defaults)
   const std::size_t steps = run.stats.registrations;

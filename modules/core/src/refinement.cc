@@ -269,8 +269,10 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   if (samples.empty() || index.points.empty()) return result;
 
   double x = initial(0, 2), y = initial(1, 2), yaw = yawOf(initial);
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero(), counted_information = Eigen::Matrix3d::Zero(),
-                  step_information = Eigen::Matrix3d::Zero();
+  // The last pass's sums, kept for the covariance: the information of every pair (h), the part
+  // of it samples between the same two raw returns share (surplus), and the information the
+  // step weighs its pairs by (step_h).
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero(), surplus = Eigen::Matrix3d::Zero(), step_h = Eigen::Matrix3d::Zero();
   double weighted_squares = 0.0;
   double weight_sum = 0.0;
   double lever_squares =
@@ -289,7 +291,9 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.iterations = iteration + 1;
     const Eigen::Rotation2Dd rotation(yaw);
     const Eigen::Vector2d translation(x, y);
-    Eigen::Matrix3d h = Eigen::Matrix3d::Zero(), surplus = Eigen::Matrix3d::Zero(), step_h = Eigen::Matrix3d::Zero();
+    h.setZero();
+    surplus.setZero();
+    step_h.setZero();
     Eigen::Vector3d step_g = Eigen::Vector3d::Zero();
     weighted_squares = 0.0;
     lever_squares = 0.0;
@@ -315,15 +319,16 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       if (share < 1.0) addUpperTriangle(surplus, (1.0 - share) * weighted, jacobian);
       lever_squares += weight * rotated.squaredNorm();
       weight_sum += weight;
-      const Eigen::Vector3d gradient = weight * residual * jacobian;
       // The step weighs each pair as the covariance counts it. A target vertex that ends its
       // contour is where the target's view of that surface ended (an occlusion, the range
       // limit): the source sample paired with it may lie on surface the target never saw, so
       // the pair counts for the overlap and the information but does not move the estimate.
       if (!index.at_end[j]) {
-        step_g += share * gradient;
-        addUpperTriangle(step_h, share * weighted, jacobian);
-        if (stretches_counted) stretch_gradient[stretch[j]] += share * gradient;
+        const Eigen::Vector3d counted = share * weighted;
+        const Eigen::Vector3d gradient = residual * counted;
+        step_g += gradient;
+        addUpperTriangle(step_h, counted, jacobian);
+        if (stretches_counted) stretch_gradient[stretch[j]] += gradient;
       }
       weighted_squares += weight * residual * residual;
       ++pairs;
@@ -334,9 +339,6 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.pairs = pairs;
     result.overlap = static_cast<double>(pairs) / static_cast<double>(samples.size());
     result.rmse = pairs > 0 ? std::sqrt(weighted_squares / pairs) : 0.0;
-    information = h;
-    counted_information = h - surplus;
-    step_information = step_h;
     if (pairs < 6) break;
     // Solve only along well-constrained directions, rotation measured in metres of arc.
     result.rms_range = rmsRange(lever_squares, weight_sum);
@@ -370,24 +372,25 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   if (result.pairs >= 6) {
     // Translation and rotation have different units: judge degeneracy on the translation block
     // and on the rotation conditioned on it.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(information.topLeftCorner<2, 2>());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(h.topLeftCorner<2, 2>());
     result.constraint_ratio =
         translation.eigenvalues()(1) > 0.0 ? translation.eigenvalues()(0) / translation.eigenvalues()(1) : 0.0;
-    const Eigen::Matrix2d h_tt = information.topLeftCorner<2, 2>();
-    const Eigen::Vector2d h_tr = information.topRightCorner<2, 1>();
-    const double h_rr = information(2, 2);
+    const Eigen::Matrix2d h_tt = h.topLeftCorner<2, 2>();
+    const Eigen::Vector2d h_tr = h.topRightCorner<2, 1>();
+    const double h_rr = h(2, 2);
     if (lever_squares > 0.0 && std::abs(h_tt.determinant()) > 1e-12)
       result.rotation_constraint_ratio = std::max(0.0, h_rr - h_tr.dot(h_tt.inverse() * h_tr)) / lever_squares;
     result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
+    const Eigen::Matrix3d counted_information = h - surplus;
     if (sigma2 > 0.0) result.information = counted_information / (params.covariance_scale * sigma2);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(counted_information);
     if (lu.isInvertible()) {
       result.covariance = params.covariance_scale * sigma2 * lu.inverse();
       if (stretches_counted && sigma2 > 0.0) {
         if (const std::optional<Eigen::Matrix3d> widened =
-                widenByStretches(result.covariance, step_information, stretch_gradient)) {
+                widenByStretches(result.covariance, step_h, stretch_gradient)) {
           result.covariance = *widened;
           bool invertible = false;
           Eigen::Matrix3d inverse;

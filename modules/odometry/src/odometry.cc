@@ -125,11 +125,15 @@ std::optional<std::size_t> decideBetween(const Prediction &prediction, const std
 
 enum class Fused { kNo, kConverged, kPinned };
 
+// Whether the scans left a direction of `match` free and say what they pin of the rest: an
+// unconstrained verdict, or a converged estimate marked degenerate.
+bool leavesADirectionFree(const MatchResult &match) { return match.pinned && (!match.converged || match.degenerate); }
+
 // Fuses `match` with the wheels' increment `wheel` (covariance `wheel_covariance`): a converged
 // registration by its covariance, one that leaves a direction free by what it pins. Nothing
 // changes when there is nothing to fuse or the two disagree beyond their uncertainties.
 Fused fuseWithWheels(MatchResult &match, const io::Pose2D &wheel, const Eigen::Matrix3d &wheel_covariance) {
-  const bool by_pinned = match.pinned && (!match.converged || match.degenerate);
+  const bool by_pinned = leavesADirectionFree(match);
   const Eigen::LLT<Eigen::Matrix3d> covariance(match.covariance);
   if (!by_pinned && (!match.converged || !match.covariance.allFinite() || covariance.info() != Eigen::Success))
     return Fused::kNo;
@@ -325,8 +329,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     // The wheels are fused with every registration when they are the guess, and otherwise with
     // those that leave a direction free: there they decide that direction only, where a bridge
     // would take the whole step from them.
-    const bool leaves_a_direction_free = match.pinned && (!match.converged || match.degenerate);
-    if ((options.guess == GuessSource::kOdometry || leaves_a_direction_free) && options.fuse_wheel_odometry &&
+    if ((options.guess == GuessSource::kOdometry || leavesADirectionFree(match)) && options.fuse_wheel_odometry &&
         entries[reference].odometry && entries[k].odometry) {
       const Fused fused =
           fuseWithWheels(match, *wheelMotion(log, entries[reference], entries[k]),
