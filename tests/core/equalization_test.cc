@@ -47,6 +47,27 @@ TEST(Equalization, FixedStepDropsTheRemainder) {
   EXPECT_NEAR(arcOnLShape(contour.vertices.back()), 4.8, 1e-9);
 }
 
+// Centred elements drop the remainder half at each end, so the points in reverse order give
+// the same vertices in reverse order; the paper's start at the first point and drop it at
+// the last.
+TEST(Equalization, CentredElementsDoNotDependOnTheDirectionOfThePoints) {
+  const ComplexSequence points = lShape();
+  const ComplexSequence reversed(points.rbegin(), points.rend());
+  EqualizedContour forward, backward;
+  std::vector<double> arc;
+  equalizeCentred(points, 0.3, forward, arc);
+  equalizeCentred(reversed, 0.3, backward, arc);
+  ASSERT_EQ(forward.elementCount(), 16u);  // 5 m / 0.3 m = 16.7: 0.2 m left over
+  EXPECT_NEAR(arcOnLShape(forward.vertices.front()), 0.1, 1e-9);
+  EXPECT_NEAR(arcOnLShape(forward.vertices.back()), 4.9, 1e-9);
+  ASSERT_EQ(backward.vertices.size(), forward.vertices.size());
+  for (std::size_t r = 0; r < forward.vertices.size(); ++r)
+    EXPECT_NEAR(std::abs(forward.vertices[r] - backward.vertices[backward.vertices.size() - 1 - r]), 0.0, 1e-9)
+        << "vertex " << r;
+  const EqualizedContour paper = equalizeByStep(reversed, 0.3);
+  EXPECT_NEAR(arcOnLShape(paper.vertices.back()), 0.2, 1e-9);  // the paper's: all 0.2 m at the end
+}
+
 // Each vertex knows how far apart the two raw points it lies between are: the covariance
 // counts the samples on a sparse stretch by it (refinement.h).
 TEST(Equalization, EachVertexKnowsTheSpacingOfItsRawPoints) {

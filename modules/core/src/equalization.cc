@@ -8,12 +8,12 @@ namespace contour_reg {
 
 namespace {
 
-// Resamples the polyline at arc lengths 0, step, ..., count * step (eqs. 4-11:
-// each new vertex ends a piece made of the rest of one raw vector, whole raw
+// Resamples the polyline at arc lengths start, start + step, ..., start + count * step
+// (eqs. 4-11: each new vertex ends a piece made of the rest of one raw vector, whole raw
 // vectors, and the used part of the raw vector where the piece ends). `arc` is
 // arcLengths(points).
-void resample(const ComplexSequence &points, const std::vector<double> &arc, double step, std::size_t count,
-              EqualizedContour &contour) {
+void resample(const ComplexSequence &points, const std::vector<double> &arc, double start, double step,
+              std::size_t count, EqualizedContour &contour) {
   contour.step = step;
   contour.vertices.clear();
   contour.spacing.clear();
@@ -22,7 +22,7 @@ void resample(const ComplexSequence &points, const std::vector<double> &arc, dou
   contour.spacing.reserve(count + 1);
   std::size_t hint = 0;
   for (std::size_t r = 0; r <= count; ++r) {
-    contour.vertices.push_back(pointAtArcLength(points, arc, static_cast<double>(r) * step, &hint));
+    contour.vertices.push_back(pointAtArcLength(points, arc, start + static_cast<double>(r) * step, &hint));
     contour.spacing.push_back(arc[hint + 1] - arc[hint]);  // the raw vector the vertex lies on
   }
 }
@@ -79,7 +79,7 @@ EqualizedContour equalizeByCount(const ComplexSequence &points, int count) {
   EqualizedContour contour;
   if (count < 1 || points.empty()) return contour;
   const std::vector<double> arc = arcLengths(points);
-  resample(points, arc, arc.back() / count, static_cast<std::size_t>(count), contour);
+  resample(points, arc, 0.0, arc.back() / count, static_cast<std::size_t>(count), contour);
   return contour;
 }
 
@@ -87,8 +87,15 @@ EqualizedContour equalizeByStep(const ComplexSequence &points, double step) {
   EqualizedContour contour;
   if (!(step > 0.0) || points.empty()) return contour;
   const std::vector<double> arc = arcLengths(points);
-  resample(points, arc, step, elementCountAtStep(arc.back(), step), contour);
+  resample(points, arc, 0.0, step, elementCountAtStep(arc.back(), step), contour);
   return contour;
+}
+
+void equalizeCentred(const ComplexSequence &points, double step, EqualizedContour &contour, std::vector<double> &arc) {
+  arcLengths(points, arc);
+  const double length = arc.empty() ? 0.0 : arc.back();
+  const std::size_t count = step > 0.0 ? elementCountAtStep(length, step) : 0;
+  resample(points, arc, std::max(0.0, 0.5 * (length - static_cast<double>(count) * step)), step, count, contour);
 }
 
 std::vector<EqualizedContour> equalizeSegments(const std::vector<ContourSegment> &segments,
@@ -114,9 +121,9 @@ void equalizeSegments(const std::vector<ContourSegment> &segments, const Equaliz
     if (params.mode == EqualizationMode::kFixedCount) {
       // Each segment gets a whole number of elements, near its share of the p.
       const long count = step > 0.0 ? std::max(1L, std::lround(length / step)) : 1L;
-      resample(points, arc, length / static_cast<double>(count), static_cast<std::size_t>(count), contour);
+      resample(points, arc, 0.0, length / static_cast<double>(count), static_cast<std::size_t>(count), contour);
     } else {
-      resample(points, arc, step, step > 0.0 ? elementCountAtStep(length, step) : 0, contour);
+      resample(points, arc, 0.0, step, step > 0.0 ? elementCountAtStep(length, step) : 0, contour);
     }
   }
 }

@@ -9,16 +9,39 @@
 #include <Eigen/Dense>
 
 #include "contour_reg/core/bearing_buckets.h"
+#include "contour_reg/core/equalization.h"
 #include "contour_reg/core/transform_estimation.h"
 
 namespace contour_reg {
 
 namespace {
 
-// The target's equalized contour vertices (stage B) sorted by bearing, with their contour, for
-// projective search. The vertices lie on the raw polyline one step apart, however sparse the
-// raw points are (distant walls, 1 deg beams): a source sample between two raw points still
-// finds a partner, and a normal spans the same arc length everywhere.
+// `contour` as the refinement sees it: its raw segment equalized at `step` centred on it
+// (equalizeCentred), so that the points do not depend on which way the beams ran along the
+// surface; features without their segments give the contour's own vertices, every
+// step / contour.step-th. `out` and `arc` are working memory.
+const EqualizedContour &centred(const ContourFeatures &features, const EqualizedContour &contour, double step,
+                                EqualizedContour &out, std::vector<double> &arc) {
+  if (contour.segment >= 0 && static_cast<std::size_t>(contour.segment) < features.segments.size()) {
+    equalizeCentred(features.segments[contour.segment].points, step, out, arc);
+  } else {
+    const std::size_t stride = static_cast<std::size_t>(std::max(1.0, std::round(step / contour.step)));
+    out.step = static_cast<double>(stride) * contour.step;
+    out.vertices.clear();
+    out.spacing.clear();
+    for (std::size_t r = 0; r < contour.vertices.size(); r += stride) {
+      out.vertices.push_back(contour.vertices[r]);
+      out.spacing.push_back(r < contour.spacing.size() ? contour.spacing[r] : 0.0);
+    }
+  }
+  out.segment = contour.segment;
+  return out;
+}
+
+// The target's contours, equalized centred (centred()), their vertices sorted by bearing, with
+// their contour, for projective search. The vertices lie on the raw polyline one step apart,
+// however sparse the raw points are (distant walls, 1 deg beams): a source sample between two
+// raw points still finds a partner, and a normal spans the same arc length everywhere.
 struct BearingIndex {
   std::vector<Eigen::Vector2d> points;
   std::vector<int> segment;  // the contour of each point
@@ -32,21 +55,26 @@ struct BearingIndex {
   std::vector<char> at_end;                                   // the first or last vertex of its contour
   std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (contour, vertex): kept for the next build
   BearingBuckets buckets;
+  std::vector<EqualizedContour> contours;  // the target's, centred
+  std::vector<double> arc;
 
   // Indexes `target`, reusing the buffers of the last build.
   void build(const ContourFeatures &target) {
+    contours.resize(target.contours.size());
+    for (std::size_t k = 0; k < contours.size(); ++k)
+      centred(target, target.contours[k], target.contours[k].step, contours[k], arc);
     order.clear();
     std::size_t vertices = 0;
-    for (const EqualizedContour &contour : target.contours) vertices += contour.vertices.size();
+    for (const EqualizedContour &contour : contours) vertices += contour.vertices.size();
     order.reserve(vertices);
-    for (std::size_t k = 0; k < target.contours.size(); ++k)
-      for (std::size_t n = 0; n < target.contours[k].vertices.size(); ++n)
-        order.push_back({std::arg(target.contours[k].vertices[n]), {int(k), int(n)}});
+    for (std::size_t k = 0; k < contours.size(); ++k)
+      for (std::size_t n = 0; n < contours[k].vertices.size(); ++n)
+        order.push_back({std::arg(contours[k].vertices[n]), {int(k), int(n)}});
     // A scan's contours follow its beams, so the vertices usually come in bearing order already.
     if (!std::is_sorted(order.begin(), order.end())) std::sort(order.begin(), order.end());
     contour_size.clear();
     contour_step.clear();
-    for (const EqualizedContour &contour : target.contours) {
+    for (const EqualizedContour &contour : contours) {
       contour_size.push_back(static_cast<int>(contour.vertices.size()));
       contour_step.push_back(contour.step);
     }
@@ -64,9 +92,9 @@ struct BearingIndex {
     at_end.reserve(vertices);
     for (const auto &[b, where] : order) {
       at_end.push_back(where.second == 0 || where.second + 1 == contour_size[where.first]);
-      const std::vector<double> &apart = target.contours[where.first].spacing;
+      const std::vector<double> &apart = contours[where.first].spacing;
       spacing.push_back(where.second < static_cast<int>(apart.size()) ? apart[where.second] : 0.0);
-      points.push_back(toEigen(target.contours[where.first].vertices[where.second]));
+      points.push_back(toEigen(contours[where.first].vertices[where.second]));
       segment.push_back(where.first);
       vertex.push_back(where.second);
       bearing.push_back(b);
@@ -175,18 +203,14 @@ std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, doubl
 
 void contourSamples(const ContourFeatures &source, double sample_step, std::vector<Eigen::Vector2d> &samples) {
   samples.clear();
-  const auto strideOf = [&](const EqualizedContour &contour) {
-    return static_cast<std::size_t>(std::max(1.0, std::round(sample_step / contour.step)));
-  };
-  std::size_t count = 0;
-  for (const EqualizedContour &contour : source.contours)
-    if (!contour.vertices.empty() && contour.step > 0.0)
-      count += (contour.vertices.size() + strideOf(contour) - 1) / strideOf(contour);
-  samples.reserve(count);
+  EqualizedContour centred_contour;
+  std::vector<double> arc;
   for (const EqualizedContour &contour : source.contours) {
     if (contour.vertices.empty() || contour.step <= 0.0) continue;
-    const std::size_t stride = strideOf(contour);
-    for (std::size_t r = 0; r < contour.vertices.size(); r += stride) samples.push_back(toEigen(contour.vertices[r]));
+    // The samples as far apart along the contour as whole elements allow.
+    const double step = std::max(1.0, std::round(sample_step / contour.step)) * contour.step;
+    for (const Complex &p : centred(source, contour, step, centred_contour, arc).vertices)
+      samples.push_back(toEigen(p));
   }
 }
 

@@ -65,6 +65,15 @@ EqualizedContour equalizeByCount(const ComplexSequence &points, int count);
 /// than one step at the end of the segment is dropped.
 EqualizedContour equalizeByStep(const ComplexSequence &points, double step);
 
+/// Elements of arc length `step` centred on the polyline: the remainder shorter than one step
+/// is dropped half at each end, so the vertices do not depend on which way the points run.
+/// The paper's elements (equalizeByStep) start at the first point and leave the whole
+/// remainder at the last, at the same end of every contour of a scan (its segments run in
+/// beam order): a registration that pairs such vertices turns its estimate a little one way,
+/// a heading drift over a drive. The refinement (refinement.h) pairs centred ones. `arc` is
+/// working memory.
+void equalizeCentred(const ComplexSequence &points, double step, EqualizedContour &contour, std::vector<double> &arc);
+
 /// Equalizes every segment of one scan with the chosen mode. In kFixedCount mode
 /// e = (total length of all segments) / p, and each segment gets round(length / e)
 /// elements (at least one), so a scan of one segment gets exactly p.

@@ -6,7 +6,8 @@
 /// more evidence. Starting from the RANSAC estimate, equalized source vertices are paired
 /// with the nearest equalized target vertex found by bearing (projective search, as in
 /// PL-ICP; the vertices lie one step apart on the raw polyline however sparse the beams),
-/// and the point-to-line distances are minimized by Gauss-Newton with Huber weights, the
+/// both equalized centred on their raw segments (equalizeCentred), so that the pairs do
+/// not depend on which way the beams ran along a surface, and the point-to-line distances are minimized by Gauss-Newton with Huber weights, the
 /// pairing distance shrinking each iteration. The update moves the pose only
 /// along directions the contours constrain: where the information matrix is degenerate
 /// (a corridor constrains nothing along its axis) the corner estimate is kept. The step
@@ -95,7 +96,9 @@ struct RefinementStart {
   const RefinementParams *params;
 };
 
-/// The equalized source vertices the refinement pairs: one every `sample_step` m along each contour.
+/// The source points the refinement pairs: each contour's raw segment equalized centred
+/// (equalizeCentred) at the whole number of elements nearest `sample_step` m; the contour's
+/// own vertices, as many elements apart, for features without their segments.
 std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, double sample_step);
 
 /// The same into `samples`, reusing its buffer.
