@@ -55,29 +55,38 @@ struct BearingIndex {
   std::vector<char> at_end;                                   // the first or last vertex of its contour
   std::vector<std::pair<double, std::pair<int, int>>> order;  // bearing, (contour, vertex): kept for the next build
   BearingBuckets buckets;
-  std::vector<EqualizedContour> contours;  // the target's, centred
+  // The target's contours, centred, one after another: contour k's vertices and spacings
+  // start at first[k]; `scratch` and `arc` are working memory.
+  std::vector<Complex> centred_vertices;
+  std::vector<double> centred_spacing;
+  std::vector<std::size_t> first;
+  EqualizedContour scratch;
   std::vector<double> arc;
 
   // Indexes `target`, reusing the buffers of the last build.
   void build(const ContourFeatures &target) {
-    contours.resize(target.contours.size());
-    for (std::size_t k = 0; k < contours.size(); ++k)
-      centred(target, target.contours[k], target.contours[k].step, contours[k], arc);
-    order.clear();
-    std::size_t vertices = 0;
-    for (const EqualizedContour &contour : contours) vertices += contour.vertices.size();
-    order.reserve(vertices);
-    for (std::size_t k = 0; k < contours.size(); ++k)
-      for (std::size_t n = 0; n < contours[k].vertices.size(); ++n)
-        order.push_back({std::arg(contours[k].vertices[n]), {int(k), int(n)}});
-    // A scan's contours follow its beams, so the vertices usually come in bearing order already.
-    if (!std::is_sorted(order.begin(), order.end())) std::sort(order.begin(), order.end());
+    centred_vertices.clear();
+    centred_spacing.clear();
+    first.clear();
     contour_size.clear();
     contour_step.clear();
-    for (const EqualizedContour &contour : contours) {
-      contour_size.push_back(static_cast<int>(contour.vertices.size()));
-      contour_step.push_back(contour.step);
+    for (const EqualizedContour &contour : target.contours) {
+      centred(target, contour, contour.step, scratch, arc);
+      first.push_back(centred_vertices.size());
+      centred_vertices.insert(centred_vertices.end(), scratch.vertices.begin(), scratch.vertices.end());
+      centred_spacing.insert(centred_spacing.end(), scratch.spacing.begin(), scratch.spacing.end());
+      centred_spacing.resize(centred_vertices.size(), 0.0);
+      contour_size.push_back(static_cast<int>(scratch.vertices.size()));
+      contour_step.push_back(scratch.step);
     }
+    const std::size_t vertices = centred_vertices.size();
+    order.clear();
+    order.reserve(vertices);
+    for (std::size_t k = 0; k < first.size(); ++k)
+      for (int n = 0; n < contour_size[k]; ++n)
+        order.push_back({std::arg(centred_vertices[first[k] + n]), {int(k), n}});
+    // A scan's contours follow its beams, so the vertices usually come in bearing order already.
+    if (!std::is_sorted(order.begin(), order.end())) std::sort(order.begin(), order.end());
     points.clear();
     segment.clear();
     vertex.clear();
@@ -91,10 +100,10 @@ struct BearingIndex {
     at_end.clear();
     at_end.reserve(vertices);
     for (const auto &[b, where] : order) {
+      const std::size_t at = first[where.first] + where.second;
       at_end.push_back(where.second == 0 || where.second + 1 == contour_size[where.first]);
-      const std::vector<double> &apart = contours[where.first].spacing;
-      spacing.push_back(where.second < static_cast<int>(apart.size()) ? apart[where.second] : 0.0);
-      points.push_back(toEigen(contours[where.first].vertices[where.second]));
+      spacing.push_back(centred_spacing[at]);
+      points.push_back(toEigen(centred_vertices[at]));
       segment.push_back(where.first);
       vertex.push_back(where.second);
       bearing.push_back(b);
@@ -203,8 +212,9 @@ std::vector<Eigen::Vector2d> contourSamples(const ContourFeatures &source, doubl
 
 void contourSamples(const ContourFeatures &source, double sample_step, std::vector<Eigen::Vector2d> &samples) {
   samples.clear();
-  EqualizedContour centred_contour;
-  std::vector<double> arc;
+  // Working memory, kept between calls (each thread its own).
+  thread_local EqualizedContour centred_contour;
+  thread_local std::vector<double> arc;
   for (const EqualizedContour &contour : source.contours) {
     if (contour.vertices.empty() || contour.step <= 0.0) continue;
     // The samples as far apart along the contour as whole elements allow.

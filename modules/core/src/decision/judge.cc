@@ -63,7 +63,7 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const E
   // that the motion it scores is refined as fully as the best.
   const Eigen::Matrix3d &best = found.best.refined.transform;
   const auto near_best = [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; };
-  contourSamples(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples);
+  samplesOf(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples, buffers.sparse_sampled);
   const RefinementResult quick = buffers.refiner.refine(
       buffers.sparse_samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params), near_best);
   if (motionDistance(best, quick.transform) <= kDistinctMotions) return true;

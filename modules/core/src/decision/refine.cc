@@ -15,6 +15,16 @@ const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuff
   return buffers.refiner;
 }
 
+const std::vector<Eigen::Vector2d> &samplesOf(const ContourFeatures &source, double sample_step,
+                                              std::vector<Eigen::Vector2d> &samples,
+                                              std::pair<std::uint64_t, double> &sampled) {
+  if (source.extraction == 0 || sampled != std::make_pair(source.extraction, sample_step)) {
+    contourSamples(source, sample_step, samples);
+    sampled = {source.extraction, sample_step};
+  }
+  return samples;
+}
+
 const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &source, const ContourFeatures &target,
                                                       std::vector<RefinementStart> &starts,
                                                       RegistrationBuffers &buffers) {
@@ -22,11 +32,10 @@ const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &sou
   // The starts share their sample spacing: the source is sampled once for the full
   // refinements and once, twice as sparse, for the screening.
   const double step = starts.front().params->sample_step;
-  std::vector<Eigen::Vector2d> &samples = buffers.samples;
-  contourSamples(source, step, samples);
+  const std::vector<Eigen::Vector2d> &samples = samplesOf(source, step, buffers.samples, buffers.sampled);
   if (starts.size() > kRefinedInFull) {
-    std::vector<Eigen::Vector2d> &sparse = buffers.sparse_samples;
-    contourSamples(source, 2.0 * step, sparse);
+    const std::vector<Eigen::Vector2d> &sparse =
+        samplesOf(source, 2.0 * step, buffers.sparse_samples, buffers.sparse_sampled);
     struct Screened {
       double overlap;
       std::size_t start;

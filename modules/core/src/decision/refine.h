@@ -21,6 +21,12 @@ constexpr std::size_t kRefinedInFull = 3;
 /// The refiner of `buffers`, indexing `target` (rebuilt only for a different extraction).
 const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuffers &buffers);
 
+/// The source samples `sample_step` apart (contourSamples) in `samples`, computed again only
+/// for a different extraction or step than `sampled` records.
+const std::vector<Eigen::Vector2d> &samplesOf(const ContourFeatures &source, double sample_step,
+                                              std::vector<Eigen::Vector2d> &samples,
+                                              std::pair<std::uint64_t, double> &sampled);
+
 /// Refines the most promising of `starts` (kept in `starts`) in full into buffers.refined, in
 /// the order of `starts`; buffers.samples then holds the source samples they were refined on.
 const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &source, const ContourFeatures &target,

@@ -7,15 +7,13 @@
 /// with the nearest equalized target vertex found by bearing (projective search, as in
 /// PL-ICP; the vertices lie one step apart on the raw polyline however sparse the beams),
 /// both equalized centred on their raw segments (equalizeCentred), so that the pairs do
-/// not depend on which way the beams ran along a surface, and the point-to-line distances are minimized by Gauss-Newton with Huber weights, the
-/// pairing distance shrinking each iteration. The update moves the pose only
-/// along directions the contours constrain: where the information matrix is degenerate
-/// (a corridor constrains nothing along its axis) the corner estimate is kept. The step
-/// weighs each pair as the covariance counts it (samples between the same two sparse raw
-/// returns share one sample's weight per sample_step) and leaves out pairs with a vertex that
-/// ends a target contour (an occlusion edge: the source may see past it). The
-/// information matrix also gives the covariance of the estimate, to which a yaw term that
-/// grows with the turn is added (RefinementParams::turn_noise).
+/// not depend on which way the beams ran along a surface, and the point-to-line distances are minimized by Gauss-Newton
+/// with Huber weights, the pairing distance shrinking each iteration. The update moves the pose only along directions
+/// the contours constrain: where the information matrix is degenerate (a corridor constrains nothing along its axis)
+/// the corner estimate is kept. The step weighs each pair as the covariance counts it (samples between the same two
+/// sparse raw returns share one sample's weight per sample_step) and leaves out pairs with a vertex that ends a target
+/// contour (an occlusion edge: the source may see past it). The information matrix also gives the covariance of the
+/// estimate, to which a yaw term that grows with the turn is added (RefinementParams::turn_noise).
 
 #include <functional>
 #include <memory>

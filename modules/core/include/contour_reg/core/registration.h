@@ -197,6 +197,8 @@ struct RegistrationBuffers {
   std::vector<RefinementStart> starts;
   std::vector<RefinementResult> refined;
   std::vector<Eigen::Vector2d> samples, sparse_samples;
+  /// The extraction and sample step `samples` and `sparse_samples` hold (extraction 0: none).
+  std::pair<std::uint64_t, double> sampled{0, 0.0}, sparse_sampled{0, 0.0};
   RangeView target_view, source_view;  ///< each scan's view, for free-space evidence
   std::uint64_t viewed_target = 0;     ///< extraction target_view shows (0: none)
   /// Working memory of the judge's check for repeated structure: the target's axis and its
