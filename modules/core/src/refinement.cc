@@ -246,9 +246,12 @@ struct ContourRefiner::Index {
   std::vector<int> stretch;
   int stretches = 0;
   std::vector<Eigen::Vector3d> stretch_gradient;
+  std::vector<int> stretch_first, stretch_span;  // numberStretches' working memory
 
   void numberStretches(double length) {
-    std::vector<int> first(bearing.contour_size.size() + 1, 0), span(bearing.contour_size.size(), 1);
+    std::vector<int> &first = stretch_first, &span = stretch_span;
+    first.assign(bearing.contour_size.size() + 1, 0);
+    span.assign(bearing.contour_size.size(), 1);
     for (std::size_t k = 0; k < span.size(); ++k) {
       const double step = bearing.contour_step[k];
       if (step > 0.0) span[k] = std::max(1, static_cast<int>(std::lround(length / step)));
