@@ -25,7 +25,8 @@ const EqualizedContour &centred(const ContourFeatures &features, const Equalized
   if (contour.segment >= 0 && static_cast<std::size_t>(contour.segment) < features.segments.size()) {
     equalizeCentred(features.segments[contour.segment].points, step, out, arc);
   } else {
-    const std::size_t stride = static_cast<std::size_t>(std::max(1.0, std::round(step / contour.step)));
+    const std::size_t stride =
+        contour.step > 0.0 ? static_cast<std::size_t>(std::max(1.0, std::round(step / contour.step))) : 1;
     out.step = static_cast<double>(stride) * contour.step;
     out.vertices.clear();
     out.spacing.clear();
