@@ -52,13 +52,16 @@ inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &las
       ->type_name("X Y YAW");
 }
 
-/// --max-range, --scan-topic, --odom-topic, --scan-period, --laser-pose.
+/// --max-range, --scan-topic, --odom-topic, --no-wheel-odometry, --scan-period, --laser-pose.
 inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m, > 0)")
       ->capture_default_str()
       ->check(positive());
   command.add_option("--scan-topic", options.scan_topic, "Bags: sensor_msgs/LaserScan topic (default: the first)");
   command.add_option("--odom-topic", options.odometry_topic, "Bags: nav_msgs/Odometry topic (default: the first)");
+  command.add_flag("--wheel-odometry,!--no-wheel-odometry", options.wheel_odometry,
+                   "Read the log's wheel odometry (on by default; --no-wheel-odometry: the scans alone, as from a "
+                   "LIDAR without wheels; the poses of --log-poses and --guess odom are then missing too)");
   command
       .add_option("--scan-period", options.scan_period,
                   "Scans without beam timing (CARMEN, PCD): s per turn of the LIDAR, beams taken in index order "

@@ -88,6 +88,15 @@ TEST(Rosbag, WheelOdometryBetweenTheScansReadsBack) {
   // Each scan's odometry comes from the samples: at 0.5 s the sixth.
   ASSERT_TRUE(read.entries[1].odometry.has_value());
   EXPECT_NEAR(read.entries[1].odometry->x, 0.3, 1e-9);
+
+  // Read without its wheel odometry (laser-only studies): the scans alone, their timing kept.
+  LogReadOptions scans_only;
+  scans_only.wheel_odometry = false;
+  const ScanLog without = readLog(path, scans_only);
+  ASSERT_EQ(without.entries.size(), read.entries.size());
+  EXPECT_TRUE(without.wheel_odometry.empty());
+  for (const LogEntry &entry : without.entries) EXPECT_FALSE(entry.odometry.has_value());
+  EXPECT_EQ(without.entries[1].scan.time_increment, read.entries[1].scan.time_increment);
 }
 
 // A topic named for the scans or the odometry that the bag does not carry is an error naming

@@ -38,6 +38,10 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
       if (entry.scan.time_increment == 0.0)
         entry.scan.time_increment = beamInterval(options.scan_period, entry.scan.angle_increment);
   if (options.laser_pose) log.laser_pose = options.laser_pose;
+  if (!options.wheel_odometry) {
+    log.wheel_odometry.clear();
+    for (LogEntry &entry : log.entries) entry.odometry.reset();
+  }
   return log;
 }
 

@@ -23,10 +23,14 @@ struct LogReadOptions {
   /// The laser's pose on the robot (base_link -> laser; x, y in m, yaw in rad), over what the
   /// log says (ScanLog::laser_pose: ROBOTLASER1 lines, a bag's tf).
   std::optional<Pose2D> laser_pose;
+  /// false: the log's wheel odometry (and the poses its scan lines carry) is left out, the
+  /// scans read alone, as a LIDAR without wheels gives them.
+  bool wheel_odometry = true;
 };
 
 /// Reads `path` with the reader its kind calls for, then gives scans without beam timing
-/// the timing of `scan_period` and the log the mounting `laser_pose` when set. Throws
+/// the timing of `scan_period`, the log the mounting `laser_pose` when set, and leaves the
+/// wheel odometry out without `wheel_odometry`. Throws
 /// ReadError naming the file.
 ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
 
