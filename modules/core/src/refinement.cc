@@ -58,7 +58,7 @@ struct BearingIndex {
   BearingBuckets buckets;
   // The target's contours, centred, one after another: contour k's vertices and spacings
   // start at first[k]; `scratch` and `arc` are working memory.
-  std::vector<Complex> centred_vertices;
+  ComplexSequence centred_vertices;
   std::vector<double> centred_spacing;
   std::vector<std::size_t> first;
   EqualizedContour scratch;
@@ -76,7 +76,6 @@ struct BearingIndex {
       first.push_back(centred_vertices.size());
       centred_vertices.insert(centred_vertices.end(), scratch.vertices.begin(), scratch.vertices.end());
       centred_spacing.insert(centred_spacing.end(), scratch.spacing.begin(), scratch.spacing.end());
-      centred_spacing.resize(centred_vertices.size(), 0.0);
       contour_size.push_back(static_cast<int>(scratch.vertices.size()));
       contour_step.push_back(scratch.step);
     }

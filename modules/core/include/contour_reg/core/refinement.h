@@ -6,14 +6,16 @@
 /// more evidence. Starting from the RANSAC estimate, equalized source vertices are paired
 /// with the nearest equalized target vertex found by bearing (projective search, as in
 /// PL-ICP; the vertices lie one step apart on the raw polyline however sparse the beams),
-/// both equalized centred on their raw segments (equalizeCentred), so that the pairs do
-/// not depend on which way the beams ran along a surface, and the point-to-line distances are minimized by Gauss-Newton
-/// with Huber weights, the pairing distance shrinking each iteration. The update moves the pose only along directions
-/// the contours constrain: where the information matrix is degenerate (a corridor constrains nothing along its axis)
-/// the corner estimate is kept. The step weighs each pair as the covariance counts it (samples between the same two
-/// sparse raw returns share one sample's weight per sample_step) and leaves out pairs with a vertex that ends a target
-/// contour (an occlusion edge: the source may see past it). The information matrix also gives the covariance of the
-/// estimate, to which a yaw term that grows with the turn is added (RefinementParams::turn_noise).
+/// both equalized centred on their raw segments (equalizeCentred), so that the pairs do not
+/// depend on which way the beams ran along a surface, and the point-to-line distances are
+/// minimized by Gauss-Newton with Huber weights, the pairing distance shrinking each
+/// iteration. The update moves the pose only along directions the contours constrain: where
+/// the information matrix is degenerate (a corridor constrains nothing along its axis) the
+/// corner estimate is kept. The step weighs each pair as the covariance counts it (samples
+/// between the same two sparse raw returns share one sample's weight per sample_step) and
+/// leaves out pairs with a vertex that ends a target contour (an occlusion edge: the source
+/// may see past it). The information matrix also gives the covariance of the estimate, to
+/// which a yaw term that grows with the turn is added (RefinementParams::turn_noise).
 
 #include <functional>
 #include <memory>
@@ -42,7 +44,7 @@ struct RefinementParams {
   /// equalization interpolates them), so their residuals are correlated: H counts the samples
   /// between two raw returns farther apart than sample_step once per sample_step of their
   /// spacing, and this scale covers the correlation that remains where returns are dense
-  /// (mean normalised error squared 2.0-2.7 on simulated rooms, tests/core/degeneracy_test.cc).
+  /// (mean normalised error squared 1.7-2.8 on simulated rooms, tests/core/degeneracy_test.cc).
   double covariance_scale = 1.2;
   /// rad of yaw standard deviation per rad of turn, added to the covariance in quadrature:
   /// errors that grow with the turn and that the contours cannot show (a scan skewed by the
