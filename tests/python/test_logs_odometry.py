@@ -18,6 +18,16 @@ def test_read_log_gives_scans_and_odometry(bundled_log):
         bundled_log[99]
 
 
+def test_read_log_without_wheel_odometry_gives_the_scans_alone(bundled_log):
+    scans_alone = cr.read_log(str(BUNDLED_LOG), wheel_odometry=False)
+    assert len(scans_alone) == len(bundled_log)
+    np.testing.assert_array_equal(scans_alone.stamps, bundled_log.stamps)
+    np.testing.assert_array_equal(scans_alone[10].ranges, bundled_log[10].ranges)
+    assert np.isnan(scans_alone.odometry).all() and scans_alone.wheel_odometry.shape[0] == 0
+    # Without odometry the guess of each step is the motion before, not the wheels'.
+    assert cr.odometry(scans_alone).registrations == len(bundled_log) - 1
+
+
 def test_a_missing_file_raises_with_its_name(tmp_path):
     missing = tmp_path / "no-such-log.clf"
     with pytest.raises(cr.ReadError, match="no-such-log.clf"):
