@@ -21,6 +21,23 @@ void printReadReport(const io::ScanLog &log) {
                  log.report.reordered);
 }
 
+void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, const io::LogReadOptions &read) {
+  if (guess != "odom") return;
+  std::size_t without = 0;
+  for (const io::LogEntry &entry : log.entries) without += entry.odometry ? 0 : 1;
+  if (without == 0) return;
+  const std::string why = read.wheel_odometry ? "" : " (read with --no-wheel-odometry)";
+  if (without == log.entries.size())
+    std::fprintf(stderr,
+                 "warning: --guess odom, but %s has no wheel odometry%s: every registration starts from no motion\n",
+                 log.source.c_str(), why.c_str());
+  else
+    std::fprintf(stderr,
+                 "warning: --guess odom, but %zu of %zu scans of %s have no wheel odometry: their registrations start "
+                 "from no motion\n",
+                 without, log.entries.size(), log.source.c_str());
+}
+
 CLI::Validator inRange(double low, double high, bool open_low) {
   auto text = [](double v) {
     char buffer[32];

@@ -211,6 +211,10 @@ inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames(
 /// Prints the reader's warnings (skipped lines, the first few described) to stderr.
 void printReadReport(const io::ScanLog &log);
 
+/// With the guess "odom", warns on stderr of scans of `log` without wheel odometry: their
+/// registrations start from no motion.
+void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, const io::LogReadOptions &read);
+
 using evaluation::percentile;
 
 }  // namespace contour_reg::cli

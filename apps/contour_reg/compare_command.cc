@@ -151,6 +151,7 @@ Input loadInput(const CompareOptions &options, std::size_t k) {
   input.name = logStem(options.inputs[k]);
   input.log = io::readLog(options.inputs[k], options.read);
   printReadReport(input.log);
+  warnOfMissingOdometry(input.log, options.guess, options.read);
   if (const std::string gt = reference(options.ground_truths, k, options.inputs[k], ".gt.tum"); !gt.empty())
     input.ground_truth = io::readTum(gt);
   if (const std::string rel = reference(options.relations, k, options.inputs[k], ".relations"); !rel.empty())

@@ -48,6 +48,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const io::ScanLog log = io::readLog(options.input, options.read);
   printReadReport(log);
+  warnOfMissingOdometry(log, options.odom_guess ? "odom" : options.guess, options.read);
   auto matcher = odometry::makeScanMatcher(options.method, options.methods.settings());
   odometry::OdometryOptions run_options;
   run_options.guess = guessSource(options.odom_guess ? "odom" : options.guess);

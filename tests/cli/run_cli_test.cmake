@@ -84,6 +84,13 @@ endforeach()
 if(percent_robot GREATER 1 OR percent_laser LESS 5)
   message(FATAL_ERROR "mounted.log: end-point error ${percent_robot} % as the robot's, ${percent_laser} % as the laser's")
 endif()
+# The wheel odometry left out, a guess from it is no guess at all: the tool says so.
+expect_run(0 odometry ${LOG} --guess odom --no-wheel-odometry --output ${WORK_DIR}/no-wheels.tum)
+expect_match("${LAST_ERR}" "warning: --guess odom, but .*L-hokuyo-2hz.clf has no wheel odometry")
+expect_run(0 odometry ${LOG} --guess odom --output ${WORK_DIR}/wheels.tum)
+if(LAST_ERR MATCHES "no wheel odometry")
+  message(FATAL_ERROR "odometry --guess odom warned of no wheel odometry on a log that has it:\n${LAST_ERR}")
+endif()
 
 # A moving robot's run written as a ROS 1 bag with beam timing: odometry deskews it by default.
 if(WITH_ROSBAG)
