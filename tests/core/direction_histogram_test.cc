@@ -317,5 +317,22 @@ TEST(Repetition, PairsAlongTheBuiltInDoorRowAreNotAnsweredAPeriodOff) {
   }
 }
 
+TEST(LocalFallback, TheBestGivesWayToAClearlyBetterMotionAProbeFound) {
+  // Shallow recesses 1.5 m wide every 5 m, seen 0.4 m apart: the corners cannot decide, and
+  // the refinement of the contours' best hypothesis stops near no motion, where little along
+  // the corridor pulls it. A probe along the corridor settles on the true motion, which puts
+  // clearly more of the contour on the target: the judge takes it.
+  const simulation::World corridor = corridorWithRecesses(0.1, 1.5, 5.0);
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
+  const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.4, 0.05, 2), 9);
+  const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_TRUE(r.from_local_fallback);
+  EXPECT_NEAR(r.transform(0, 2), 0.4, 0.03);
+  EXPECT_NEAR(r.transform(1, 2), 0.05, 0.03);
+  ASSERT_TRUE(r.rejected.has_value());  // the hypothesis it gave way to
+  EXPECT_LT(r.rejected->transform(0, 2), 0.2);
+}
+
 }  // namespace
 }  // namespace contour_reg

@@ -14,6 +14,9 @@ namespace {
 // A probe has settled back when it ends within this fraction of the probe distance.
 constexpr double kSettledBack = 0.25;
 
+// How many times the contours' best may give way to a clearly better motion a probe found.
+constexpr int kMaxPromotions = 2;
+
 // A corner motion that puts less than this share of the source contour on the target must
 // stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
 constexpr double kMostOfTheContour = 0.5;
@@ -151,6 +154,14 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
 
 }  // namespace
 
+void Judged::promoteRival() {
+  const ScoredMotion demoted = best;
+  best = *rival;
+  rival.reset();
+  consider(demoted.refined, demoted.score);
+  ambiguous = rival && rival->score > best.score - kScoreTie;
+}
+
 void Judged::consider(const RefinementResult &motion, double score) {
   if (motionDistance(motion.transform, best.refined.transform) <= kDistinctMotions) return;
   if (!rival || score > rival->score) rival = ScoredMotion{motion, true, score};
@@ -215,13 +226,22 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
 RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                                       Scorer &scorer, std::string &why) {
   const RefinementResult &refined = found.best.refined;
-  if (refined.overlap < params.local_fallback_min_overlap) {
-    why = "refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
-          " % of the source contour lies on the target";
-    return RegistrationStatus::kLowOverlap;
-  }
-  if (refined.degenerate ||
-      !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer)) {
+  for (int promoted = 0;; ++promoted) {
+    if (refined.overlap < params.local_fallback_min_overlap) {
+      why = "refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+            " % of the source contour lies on the target";
+      return RegistrationStatus::kLowOverlap;
+    }
+    if (!refined.degenerate &&
+        settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
+      break;
+    // A probe that settled on a motion scoring clearly better found where the refinement of
+    // the best had not yet arrived (a slow slide along a corridor): that motion is judged instead.
+    if (!refined.degenerate && promoted < kMaxPromotions && found.rival &&
+        found.rival->score > scorer.score(found.best) + kScoreTie) {
+      found.promoteRival();
+      continue;
+    }
     why = "refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return RegistrationStatus::kUnconstrained;
   }

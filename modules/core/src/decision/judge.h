@@ -44,6 +44,9 @@ struct Judged {
   std::optional<ScoredMotion> rival;
   /// Keeps `motion`, scored `score`, as the rival when it is distinct from the best and scores higher.
   void consider(const RefinementResult &motion, double score);
+  /// Makes the rival (scored) the best and the best a rival; ambiguous when that rival scores
+  /// within the tie of the new best.
+  void promoteRival();
 };
 
 /// Picks the best of `refined` (not empty). A single candidate is not scored: nothing to compare.
