@@ -17,6 +17,21 @@ constexpr double kSettledBack = 0.25;
 // How many times the contours' best may give way to a clearly better motion a probe found.
 constexpr int kMaxPromotions = 2;
 
+// Whether `motion` differs from `best` along best's weakest direction only: by at most a
+// quarter of the distance of distinct motions across it, rotation in metres of arc at the
+// RMS range.
+bool onlyAlongWeakestDirection(const RefinementResult &best, const Eigen::Matrix3d &motion) {
+  const Eigen::Vector3d arc(1.0, 1.0, best.rms_range);
+  const Eigen::Vector3d along = best.weakest_direction.cwiseProduct(arc);
+  if (!(along.norm() > 0.0)) return false;
+  const Eigen::Vector3d offset =
+      Eigen::Vector3d(motion(0, 2) - best.transform(0, 2), motion(1, 2) - best.transform(1, 2),
+                      std::remainder(yawOf(motion) - yawOf(best.transform), 2.0 * M_PI))
+          .cwiseProduct(arc);
+  const Eigen::Vector3d unit = along.normalized();
+  return (offset - offset.dot(unit) * unit).norm() <= kDistinctMotions / 4;
+}
+
 // A corner motion that puts less than this share of the source contour on the target must
 // stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
 constexpr double kMostOfTheContour = 0.5;
@@ -235,10 +250,12 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
     if (!refined.degenerate &&
         settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
       break;
-    // A probe that settled on a motion scoring clearly better found where the refinement of
-    // the best had not yet arrived (a slow slide along a corridor): that motion is judged instead.
+    // A probe that settled on a motion scoring clearly better, along the best's weakest
+    // direction from it, found where the refinement of the best had not yet arrived (a slow
+    // slide along a corridor): that motion is judged instead.
     if (!refined.degenerate && promoted < kMaxPromotions && found.rival &&
-        found.rival->score > scorer.score(found.best) + kScoreTie) {
+        found.rival->score > scorer.score(found.best) + kScoreTie &&
+        onlyAlongWeakestDirection(refined, found.rival->refined.transform)) {
       found.promoteRival();
       continue;
     }
