@@ -69,6 +69,26 @@ bool settlesBack(Judged &found, double probe, const RefinementParams &params, co
   return true;
 }
 
+// Whether the best is pinned along its weakest direction (settlesBack). Where a probe settles
+// on a motion that scores clearly better (by more than the tie) along that direction from the
+// best, the refinement of the best had stopped short of it (a slow slide along a corridor):
+// that motion becomes the best and is probed in turn, at most kMaxPromotions times. A better
+// motion elsewhere says only that the fit has several optima: not pinned.
+bool pinnedAfterPromotions(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
+                           Scorer &scorer) {
+  for (int promoted = 0;; ++promoted) {
+    const RefinementResult &best = found.best.refined;
+    if (!best.degenerate &&
+        settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
+      return true;
+    if (best.degenerate || promoted == kMaxPromotions || !found.rival ||
+        !(found.rival->score > scorer.score(found.best) + kScoreTie) ||
+        !onlyAlongWeakestDirection(best, found.rival->refined.transform))
+      return false;
+    found.promoteRival();
+  }
+}
+
 // Whether the best stands against the contours' own answer, the guess (none: no motion)
 // refined from the wider pairing distance: they agree, or that answer scores clearly worse.
 // A few corners along repeated structure (a door every few metres) can match one period off,
@@ -241,27 +261,18 @@ std::string judgeCornerMotion(Judged &found, std::size_t corners, const Registra
 RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                                       Scorer &scorer, std::string &why) {
   const RefinementResult &refined = found.best.refined;
-  for (int promoted = 0;; ++promoted) {
-    if (refined.overlap < params.local_fallback_min_overlap) {
-      why = "refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
-            " % of the source contour lies on the target";
-      return RegistrationStatus::kLowOverlap;
-    }
-    if (!refined.degenerate &&
-        settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
-      break;
-    // A probe that settled on a motion scoring clearly better, along the best's weakest
-    // direction from it, found where the refinement of the best had not yet arrived (a slow
-    // slide along a corridor): that motion is judged instead.
-    if (!refined.degenerate && promoted < kMaxPromotions && found.rival &&
-        found.rival->score > scorer.score(found.best) + kScoreTie &&
-        onlyAlongWeakestDirection(refined, found.rival->refined.transform)) {
-      found.promoteRival();
-      continue;
-    }
+  const auto overlapsTooLittle = [&] {
+    if (refined.overlap >= params.local_fallback_min_overlap) return false;
+    why = "refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+          " % of the source contour lies on the target";
+    return true;
+  };
+  if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;
+  if (!pinnedAfterPromotions(found, params, buffers, scorer)) {
     why = "refined on the contours, a direction stays weakly constrained (corridor, circle)";
     return RegistrationStatus::kUnconstrained;
   }
+  if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;  // a motion a probe found
   if (found.ambiguous) {
     why = "refined on the contours, distinct motions fit equally well (repeated structure)";
     return RegistrationStatus::kAmbiguous;
