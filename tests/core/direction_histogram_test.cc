@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "contour_reg/core/direction_histogram.h"
+#include "contour_reg/core/refinement.h"
 #include "contour_reg/core/registration.h"
 #include "contour_reg/core/transform_estimation.h"
 #include "contour_reg/simulation/office.h"
@@ -334,5 +335,37 @@ TEST(LocalFallback, TheBestGivesWayToAClearlyBetterMotionAProbeFound) {
   EXPECT_LT(r.rejected->transform(0, 2), 0.2);
 }
 
+// Shallow recesses 1.5 m wide every 5 m, seen 0.3 m apart: along the corridor little pulls the
+// refinement, which slides a few centimetres an iteration. Cut short by the iterations it says
+// so, and refined on from where it stopped it arrives.
+TEST(Refinement, ASlideAlongACorridorCutShortIsFlaggedAndArrivesWhenRefinedOn) {
+  const simulation::World corridor = corridorWithRecesses(0.1, 1.5, 5.0);
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(2.0, 0, 0), 8);
+  const ContourFeatures source = featuresFrom(corridor, test::pose2d(2.3, 0, 0), 9);
+  const ContourRefiner refiner(target, RefinementParams{});
+  const std::vector<Eigen::Vector2d> samples = contourSamples(source, RefinementParams{}.sample_step);
+  const RefinementResult cut = refiner.refine(samples, Eigen::Matrix3d::Identity(), RefinementParams{});
+  EXPECT_EQ(cut.iterations, RefinementParams{}.max_iterations);
+  EXPECT_TRUE(cut.sliding);
+  EXPECT_GT(std::abs(cut.transform(0, 2) - 0.3), 0.05);
+  RefinementParams on;
+  on.max_distance = on.min_distance;
+  const RefinementResult arrived = refiner.refine(samples, cut.transform, on);
+  EXPECT_FALSE(arrived.sliding);
+  EXPECT_NEAR(arrived.transform(0, 2), 0.3, 0.01);
+  EXPECT_NEAR(arrived.transform(1, 2), 0.0, 0.01);
+}
+
+// The same pair registered: the contours' hypotheses that slid are refined on, and the motion
+// is found rather than declined as unconstrained.
+TEST(LocalFallback, AHypothesisStillSlidingIsRefinedOnToTheMotion) {
+  const simulation::World corridor = corridorWithRecesses(0.1, 1.5, 5.0);
+  const ContourFeatures target = featuresFrom(corridor, test::pose2d(2.0, 0, 0), 8);
+  const ContourFeatures source = featuresFrom(corridor, test::pose2d(2.3, 0, 0), 9);
+  const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_NEAR(r.transform(0, 2), 0.3, 0.01);
+  EXPECT_NEAR(r.transform(1, 2), 0.0, 0.01);
+}
 }  // namespace
 }  // namespace contour_reg

@@ -324,6 +324,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   std::vector<Eigen::Vector3d> &stretch_gradient = work.stretch_gradient;
   stretch_gradient.resize(by_stretches ? work.stretches : 0);
   const int *stretch = work.stretch.data();
+  Eigen::Vector3d last_step = Eigen::Vector3d::Zero(), step_before = Eigen::Vector3d::Zero();
+  bool stopped = false;
   for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
     result.iterations = iteration + 1;
     const Eigen::Rotation2Dd rotation(yaw);
@@ -401,10 +403,15 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     yaw += step(2);
     const bool at_min_distance = distance <= params.min_distance;  // this pass paired at the smallest distance
     distance = std::max(params.min_distance, distance * 0.7);
-    if (arrived && arrived(rigidTransform(x, y, yaw))) break;
-    if (step.head<2>().norm() < params.stop_translation && std::abs(step(2)) < params.stop_rotation && at_min_distance)
-      break;
+    step_before = last_step;
+    last_step = step.cwiseProduct(Eigen::Vector3d(1.0, 1.0, result.rms_range));
+    stopped = (arrived && arrived(rigidTransform(x, y, yaw))) ||
+              (step.head<2>().norm() < params.stop_translation && std::abs(step(2)) < params.stop_rotation &&
+               at_min_distance);
+    if (stopped) break;
   }
+  result.sliding = !stopped && result.iterations == params.max_iterations && result.pairs >= 6 &&
+                   last_step.dot(step_before) > 0.5 * last_step.norm() * step_before.norm();
   result.transform = rigidTransform(x, y, yaw);
   if (result.pairs >= 6) {
     // Translation and rotation have different units: judge degeneracy on the translation block

@@ -282,8 +282,12 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
     const RejectedMotion best = rejected(judged.best, scorer);
     offerRejected(result, best);
     if (declined) offerRejected(result, *declined);
-    if (verdict == RegistrationStatus::kAmbiguous && judged.rival)
+    if (verdict == RegistrationStatus::kAmbiguous && !judged.ties.empty()) {
+      result.alternatives = {best};
+      for (decision::ScoredMotion &tie : judged.ties) result.alternatives.push_back(rejected(tie, scorer));
+    } else if (verdict == RegistrationStatus::kAmbiguous && judged.rival) {
       result.alternatives = {best, rejected(*judged.rival, scorer)};
+    }
     return;
   }
   const RefinementResult &refined = judged.best.refined;

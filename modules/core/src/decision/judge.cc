@@ -180,11 +180,11 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
     const SharedViewFit fit = sharedViewFit(buffers.samples, buffers.refiner, scorer.targetView(), best.transform,
                                             rival.transform, params.refinement.min_distance, params.free_space.margin);
     if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) {
-      found.rival = ScoredMotion{rival, true, score};  // the motion the best ties with
-      return false;
+      if (found.ties.empty()) found.rival = ScoredMotion{rival, true, score};  // the motion the best ties with
+      found.ties.push_back(ScoredMotion{rival, true, score});
     }
   }
-  return true;
+  return found.ties.empty();
 }
 
 }  // namespace

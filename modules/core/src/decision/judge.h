@@ -42,6 +42,9 @@ struct Judged {
   /// hypotheses); the motion a period along repeated structure that fits what both scans saw
   /// as well, when the check for repetition finds one. None when it scored no such motion.
   std::optional<ScoredMotion> rival;
+  /// The distinct motions a period along repeated structure that fit what both scans saw as
+  /// well as the best, when the check for repetition finds any (the first is the rival).
+  std::vector<ScoredMotion> ties;
   /// Keeps `motion`, scored `score`, as the rival when it is distinct from the best and scores higher.
   void consider(const RefinementResult &motion, double score);
   /// Makes the rival (scored) the best and the best a rival; ambiguous when that rival scores

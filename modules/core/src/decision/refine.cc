@@ -64,8 +64,16 @@ const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &sou
   }
   std::vector<RefinementResult> &refined = buffers.refined;
   refined.clear();
-  for (const RefinementStart &start : starts)
+  for (const RefinementStart &start : starts) {
     refined.push_back(refiner.refine(samples, rigidPart(start.motion), *start.params));
+    // A refinement that ran out of iterations still sliding one way goes on from where it
+    // stopped, at the smallest pairing distance, as far again.
+    if (refined.back().sliding) {
+      RefinementParams on = *start.params;
+      on.max_distance = on.min_distance;
+      refined.back() = refiner.refine(samples, refined.back().transform, on);
+    }
+  }
   return refined;
 }
 

@@ -88,6 +88,10 @@ struct RefinementResult {
   /// points by 1 m at rms_range. Zero when too few points were paired.
   Eigen::Vector3d weakest_direction = Eigen::Vector3d::Zero();
   int iterations = 0;
+  /// Whether it ended at max_iterations still moving one way (its last two steps within 60 deg
+  /// of each other, rotation in metres of arc): a slow slide, not yet converged. Ending in a
+  /// back-and-forth between two pairings is not a slide.
+  bool sliding = false;
 };
 
 /// A starting motion for the refinement (source to target, rigid) and the settings to refine it with.
