@@ -1,5 +1,6 @@
 #include "judge.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "contour_reg/core/transform_estimation.h"
@@ -181,7 +182,10 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
                                             rival.transform, params.refinement.min_distance, params.free_space.margin);
     if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) {
       if (found.ties.empty()) found.rival = ScoredMotion{rival, true, score};  // the motion the best ties with
-      found.ties.push_back(ScoredMotion{rival, true, score});
+      if (std::none_of(found.ties.begin(), found.ties.end(), [&](const ScoredMotion &tie) {
+            return motionDistance(tie.refined.transform, rival.transform) <= kDistinctMotions;
+          }))
+        found.ties.push_back(ScoredMotion{rival, true, score});
     }
   }
   return found.ties.empty();
