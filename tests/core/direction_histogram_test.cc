@@ -318,15 +318,23 @@ TEST(Repetition, PairsAlongTheBuiltInDoorRowAreNotAnsweredAPeriodOff) {
   }
 }
 
+// Shallow recesses 1.5 m wide every 5 m along one wall: along the corridor little pulls a
+// refinement, which slides a few centimetres an iteration. Scans from x0 and from dx, dy further.
+struct ShallowRecessPair {
+  ContourFeatures target, source;
+  ShallowRecessPair(double x0, double dx, double dy, double yaw_deg) {
+    const simulation::World corridor = corridorWithRecesses(0.1, 1.5, 5.0);
+    target = featuresFrom(corridor, test::pose2d(x0, 0, 0), 8);
+    source = featuresFrom(corridor, test::pose2d(x0 + dx, dy, yaw_deg), 9);
+  }
+};
+
 TEST(LocalFallback, TheBestGivesWayToAClearlyBetterMotionAProbeFound) {
-  // Shallow recesses 1.5 m wide every 5 m, seen 0.4 m apart: the corners cannot decide, and
-  // the refinement of the contours' best hypothesis stops near no motion, where little along
-  // the corridor pulls it. A probe along the corridor settles on the true motion, which puts
-  // clearly more of the contour on the target: the judge takes it.
-  const simulation::World corridor = corridorWithRecesses(0.1, 1.5, 5.0);
-  const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
-  const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.4, 0.05, 2), 9);
-  const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
+  // Seen 0.4 m apart: the corners cannot decide, and the refinement of the contours' best
+  // hypothesis stops near no motion. A probe along the corridor settles on the true motion,
+  // which puts clearly more of the contour on the target: the judge takes it.
+  const ShallowRecessPair pair(0.0, 0.4, 0.05, 2);
+  const RegistrationResult r = registerSeeded(pair.source, pair.target, RegistrationParams{});
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_TRUE(r.from_local_fallback);
   EXPECT_NEAR(r.transform(0, 2), 0.4, 0.03);
@@ -335,15 +343,12 @@ TEST(LocalFallback, TheBestGivesWayToAClearlyBetterMotionAProbeFound) {
   EXPECT_LT(r.rejected->transform(0, 2), 0.2);
 }
 
-// Shallow recesses 1.5 m wide every 5 m, seen 0.3 m apart: along the corridor little pulls the
-// refinement, which slides a few centimetres an iteration. Cut short by the iterations it says
+// Seen 0.3 m apart, the refinement from no motion slides. Cut short by the iterations it says
 // so, and refined on from where it stopped it arrives.
 TEST(Refinement, ASlideAlongACorridorCutShortIsFlaggedAndArrivesWhenRefinedOn) {
-  const simulation::World corridor = corridorWithRecesses(0.1, 1.5, 5.0);
-  const ContourFeatures target = featuresFrom(corridor, test::pose2d(2.0, 0, 0), 8);
-  const ContourFeatures source = featuresFrom(corridor, test::pose2d(2.3, 0, 0), 9);
-  const ContourRefiner refiner(target, RefinementParams{});
-  const std::vector<Eigen::Vector2d> samples = contourSamples(source, RefinementParams{}.sample_step);
+  const ShallowRecessPair pair(2.0, 0.3, 0.0, 0);
+  const ContourRefiner refiner(pair.target, RefinementParams{});
+  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementParams{}.sample_step);
   const RefinementResult cut = refiner.refine(samples, Eigen::Matrix3d::Identity(), RefinementParams{});
   EXPECT_EQ(cut.iterations, RefinementParams{}.max_iterations);
   EXPECT_TRUE(cut.sliding);
@@ -359,13 +364,12 @@ TEST(Refinement, ASlideAlongACorridorCutShortIsFlaggedAndArrivesWhenRefinedOn) {
 // The same pair registered: the contours' hypotheses that slid are refined on, and the motion
 // is found rather than declined as unconstrained.
 TEST(LocalFallback, AHypothesisStillSlidingIsRefinedOnToTheMotion) {
-  const simulation::World corridor = corridorWithRecesses(0.1, 1.5, 5.0);
-  const ContourFeatures target = featuresFrom(corridor, test::pose2d(2.0, 0, 0), 8);
-  const ContourFeatures source = featuresFrom(corridor, test::pose2d(2.3, 0, 0), 9);
-  const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
+  const ShallowRecessPair pair(2.0, 0.3, 0.0, 0);
+  const RegistrationResult r = registerSeeded(pair.source, pair.target, RegistrationParams{});
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_NEAR(r.transform(0, 2), 0.3, 0.01);
   EXPECT_NEAR(r.transform(1, 2), 0.0, 0.01);
 }
+
 }  // namespace
 }  // namespace contour_reg

@@ -18,17 +18,19 @@ constexpr double kSettledBack = 0.25;
 // How many times the contours' best may give way to a clearly better motion a probe found.
 constexpr int kMaxPromotions = 2;
 
+// How far `motion` lies from `best` (x m, y m, yaw as metres of arc at best's RMS range).
+Eigen::Vector3d offsetFrom(const RefinementResult &best, const Eigen::Matrix3d &motion) {
+  return {motion(0, 2) - best.transform(0, 2), motion(1, 2) - best.transform(1, 2),
+          std::remainder(yawOf(motion) - yawOf(best.transform), 2.0 * M_PI) * best.rms_range};
+}
+
 // Whether `motion` differs from `best` along best's weakest direction only: by at most a
 // quarter of the distance of distinct motions across it, rotation in metres of arc at the
 // RMS range.
 bool onlyAlongWeakestDirection(const RefinementResult &best, const Eigen::Matrix3d &motion) {
-  const Eigen::Vector3d arc(1.0, 1.0, best.rms_range);
-  const Eigen::Vector3d along = best.weakest_direction.cwiseProduct(arc);
+  const Eigen::Vector3d along = best.weakest_direction.cwiseProduct(Eigen::Vector3d(1.0, 1.0, best.rms_range));
   if (!(along.norm() > 0.0)) return false;
-  const Eigen::Vector3d offset =
-      Eigen::Vector3d(motion(0, 2) - best.transform(0, 2), motion(1, 2) - best.transform(1, 2),
-                      std::remainder(yawOf(motion) - yawOf(best.transform), 2.0 * M_PI))
-          .cwiseProduct(arc);
+  const Eigen::Vector3d offset = offsetFrom(best, motion);
   const Eigen::Vector3d unit = along.normalized();
   return (offset - offset.dot(unit) * unit).norm() <= kDistinctMotions / 4;
 }
@@ -50,11 +52,7 @@ bool settlesBack(Judged &found, double probe, const RefinementParams &params, co
   RefinementParams from_probe = params;
   from_probe.max_distance = params.max_distance + probe;
   const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
-  // How far from the best a motion is, rotation in metres of arc.
-  const auto from_best = [&](const Eigen::Matrix3d &m) {
-    return Eigen::Vector3d(m(0, 2) - x, m(1, 2) - y, std::remainder(yawOf(m) - yaw, 2.0 * M_PI) * best.rms_range)
-        .norm();
-  };
+  const auto from_best = [&](const Eigen::Matrix3d &m) { return offsetFrom(best, m).norm(); };
   for (const double sign : {1.0, -1.0}) {
     const Eigen::Vector3d off = sign * probe * best.weakest_direction;
     // A probe that has come back halfway into the settled radius has settled back: stop there.
