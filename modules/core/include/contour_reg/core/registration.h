@@ -81,8 +81,9 @@ struct RegistrationParams {
   int probe_max_inliers = 3;
   /// A motion the corners decide with at most this many inlier special points must agree
   /// with the contours' own answer, the guess (identity without one) refined from
-  /// local_fallback_max_distance, or fit clearly better (5 points more overlap); one that
-  /// does not goes to the local fallback. Corners along repeated structure (a door every few
+  /// local_fallback_max_distance, or score clearly better (by more than the tie of 0.05, the
+  /// score being overlap less the contour share in free space); one that does not goes to the
+  /// local fallback. Corners along repeated structure (a door every few
   /// metres) or wrongly paired in clutter can agree on a wrong motion. 0 skips this check.
   int guess_check_max_inliers = 5;
 
