@@ -126,11 +126,10 @@ std::string printed(const char *format, ...) {
   return text;
 }
 
-// The CSV's declined motion (x m, y m, yaw rad), empty fields when there is none.
-std::string declinedFields(const odometry::MatchResult &match) {
-  if (!match.declined) return ",,";
-  const Eigen::Matrix3d &d = *match.declined;
-  return printed("%.4f,%.4f,%.5f", d(0, 2), d(1, 2), yawOf(d));
+// A motion the CSV gives (x m, y m, yaw rad): the declined one, the rival; empty fields when there is none.
+std::string motionFields(const std::optional<Eigen::Matrix3d> &motion) {
+  if (!motion) return ",,";
+  return printed("%.4f,%.4f,%.5f", (*motion)(0, 2), (*motion)(1, 2), yawOf(*motion));
 }
 
 // A relation's stamp this close to a scan's stamp is the scan's (s).
@@ -227,10 +226,11 @@ int runRelations(const RelationsOptions &options) {
   if (!options.pairs_csv.empty()) {
     csv = std::fopen(options.pairs_csv.c_str(), "w");
     if (!csv) throw std::runtime_error("cannot write " + options.pairs_csv);
-    std::fprintf(csv,
-                 "method,first,second,t1_s,t2_s,ref_x_m,ref_y_m,ref_yaw_rad,est_x_m,est_y_m,est_yaw_rad,converged,"
-                 "recovered,error_m,error_deg,ms,status,reason,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,"
-                 "ref_free_space,est_free_space,declined_x_m,declined_y_m,declined_yaw_rad\n");
+    std::fprintf(
+        csv,
+        "method,first,second,t1_s,t2_s,ref_x_m,ref_y_m,ref_yaw_rad,est_x_m,est_y_m,est_yaw_rad,converged,"
+        "recovered,error_m,error_deg,ms,status,reason,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,"
+        "ref_free_space,est_free_space,declined_x_m,declined_y_m,declined_yaw_rad,rival_x_m,rival_y_m,rival_yaw_rad\n");
   }
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
@@ -244,6 +244,7 @@ int runRelations(const RelationsOptions &options) {
   std::vector<std::string> failures;          // printed after the table
   std::vector<std::string> gross_lines;       // likewise
   std::vector<std::string> covariance_lines;  // likewise
+  std::vector<std::string> rival_lines;       // likewise
   std::vector<std::vector<Answer>> answers;
   const auto within = [&](const Apart &d) {
     return d.metres <= options.tolerance && d.degrees <= options.tolerance_deg;
@@ -255,6 +256,7 @@ int runRelations(const RelationsOptions &options) {
     std::map<std::string, int> declined_right;  // per failure: the motion declined was within tolerance
     ProgressBar progress(name);
     std::size_t recovered = 0, converged = 0, wrong = 0, gross = 0, gross_against_reference = 0;
+    std::size_t with_rival = 0, rival_right = 0;  // converged pairs whose judge weighed a distinct rival
     double error_sum = 0.0;
     std::vector<double> ms;
     std::vector<double> nees;  // of the converged pairs with a covariance
@@ -270,8 +272,8 @@ int runRelations(const RelationsOptions &options) {
         const io::Pose2D laser_motion = io::toPose(laser_transform);
         match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
         match.transform = io::toMatrix(io::robotMotion(laser_motion, *log.laser_pose));
-        if (match.declined)
-          match.declined = io::toMatrix(io::robotMotion(io::toPose(*match.declined), *log.laser_pose));
+        for (std::optional<Eigen::Matrix3d> *motion : {&match.declined, &match.rival})
+          if (*motion) *motion = io::toMatrix(io::robotMotion(io::toPose(**motion), *log.laser_pose));
       }
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
@@ -282,6 +284,10 @@ int runRelations(const RelationsOptions &options) {
       if (!match.converged) ++reasons[match.status];
       if (!match.converged && match.declined)
         declined_right[match.status] += within(apart(*match.declined, io::toMatrix(r.motion)));
+      if (match.converged && match.rival) {
+        ++with_rival;
+        rival_right += within(apart(*match.rival, io::toMatrix(r.motion)));
+      }
       wrong += match.converged && !ok;
       answered.push_back({match.converged, match.converged && !ok, t});
       const bool gross_error = match.converged && (et > kGrossMetres || er > kGrossDegrees);
@@ -304,11 +310,12 @@ int runRelations(const RelationsOptions &options) {
         const Eigen::Matrix3d &c = match.covariance;
         std::fprintf(csv,
                      "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\","
-                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f,%s\n",
+                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f,%s,%s\n",
                      name.c_str(), pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2),
                      t(1, 2), yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er, match.milliseconds,
                      match.converged ? "converged" : match.status.c_str(), match.reason.c_str(), c(0, 0), c(0, 1),
-                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space, declinedFields(match).c_str());
+                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space,
+                     motionFields(match.declined).c_str(), motionFields(match.rival).c_str());
       }
       if (match.converged && !match.covariance.isZero())
         nees.push_back(evaluation::normalisedErrorSquared(io::toPose(t), r.motion, match.covariance,
@@ -330,6 +337,12 @@ int runRelations(const RelationsOptions &options) {
                           std::to_string(gross_against_reference) +
                           " with a reference the scans contradict and an estimate they do not (returns in the other "
                           "scan's free space; --pairs-csv: ref_free_space, est_free_space)");
+    if (with_rival > 0)
+      rival_lines.push_back(
+          printed("%s: the judge weighed a distinct rival on %zu of %zu converged pairs; %zu of those "
+                  "rivals lie within the tolerance of the reference (--pairs-csv: rival_x_m, "
+                  "rival_y_m, rival_yaw_rad)",
+                  name.c_str(), with_rival, converged, rival_right));
     if (!nees.empty()) {
       const auto outside = std::count_if(nees.begin(), nees.end(), [](double v) { return v > evaluation::kNees99; });
       covariance_lines.push_back(
@@ -351,6 +364,7 @@ int runRelations(const RelationsOptions &options) {
   std::printf("\n");
   for (const std::string &line : gross_lines) std::printf("%s\n", line.c_str());
   for (const std::string &line : covariance_lines) std::printf("%s\n", line.c_str());
+  for (const std::string &line : rival_lines) std::printf("%s\n", line.c_str());
   // Two estimates within half the recovery tolerance of each other agree.
   for (const std::string &line :
        agreementLines(options.methods, answers, {options.tolerance / 2, options.tolerance_deg / 2}))

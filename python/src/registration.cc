@@ -17,6 +17,11 @@ std::string methodList() {
   return names;
 }
 
+// A 3 x 3 transform as an array, or None.
+py::object matrixOrNone(const std::optional<Eigen::Matrix3d> &m) {
+  return m ? py::object(matrixArray(*m)) : py::object(py::none());
+}
+
 // (vx m/s, vy m/s, wz rad/s), or none.
 Twist2D twistOf(const py::object &twist, const char *name) {
   if (twist.is_none()) return {};
@@ -67,12 +72,13 @@ void bindRegistration(py::module_ &m) {
           "covariance", [](const odometry::MatchResult &r) { return matrixArray(r.covariance); },
           "3 x 3 covariance of (x, y, yaw), m^2 and rad^2; zero when the method gives none")
       .def_property_readonly(
-          "declined",
-          [](const odometry::MatchResult &r) -> py::object {
-            return r.declined ? py::object(matrixArray(*r.declined)) : py::object(py::none());
-          },
+          "declined", [](const odometry::MatchResult &r) { return matrixOrNone(r.declined); },
           "contour methods, not converged: the 3 x 3 transform of the best motion weighed and declined; "
           "None when none was weighed")
+      .def_property_readonly(
+          "rival", [](const odometry::MatchResult &r) { return matrixOrNone(r.rival); },
+          "contour methods, converged: the 3 x 3 transform of the best-scoring distinct motion the judge weighed "
+          "and did not take; None when it met none")
       .def_property_readonly(
           "alternatives",
           [](const odometry::MatchResult &r) {

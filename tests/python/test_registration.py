@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import contour_reg as cr
+from conftest import BUNDLED_GT
 
 
 def pose_error(result_pose, reference):
@@ -50,6 +51,21 @@ def test_a_declined_registration_gives_the_motion_it_declined(s_run):
     assert error_m < 0.03 and error_rad < np.radians(0.5), (result.declined, truth)
     np.testing.assert_array_equal(result.transform, np.eye(3))
     assert cr.register(s_run.log[2], s_run.log[0]).declined is None  # converged: nothing declined
+
+
+def test_a_converged_registration_names_the_distinct_rival_it_weighed(bundled_log):
+    # Scans 81 and 82 of the bundled log: the judge weighs a motion 0.2 m and more from its
+    # answer and keeps the answer, which the ground truth confirms.
+    gt = cr.read_tum(str(BUNDLED_GT))
+    truth = cr.relative_pose(gt[81, 1:], gt[82, 1:])
+    result = cr.register(bundled_log[82], bundled_log[81])
+    assert result.converged, result
+    assert all(e < 0.01 for e in pose_error(result.pose, truth)), (result, truth)
+    r = result.rival
+    rival_pose = (r[0, 2], r[1, 2], np.arctan2(r[1, 0], r[0, 0]))
+    apart_m, apart_rad = pose_error(rival_pose, result.pose)
+    assert apart_m + apart_rad > 0.2, (rival_pose, result)
+    assert cr.register(bundled_log[82], bundled_log[81], threshold=0.99, local_fallback=1.0).rival is None
 
 
 def test_icp_from_the_true_motion_stays_there(s_run):

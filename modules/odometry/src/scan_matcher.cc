@@ -193,6 +193,8 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
     result.covariance = contour_->getCovariance();
     result.inliers = contour_->getResult().inliers.size();
     result.pinned = contour_->getResult().pinned;
+    if (contour_->hasConverged() && contour_->getResult().rejected)
+      result.rival = contour_->getResult().rejected->transform;
     if (!contour_->hasConverged()) {
       result.reason = contour_->getFailureReason();
       result.status = toString(contour_->getResult().status);

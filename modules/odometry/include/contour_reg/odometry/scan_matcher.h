@@ -45,6 +45,9 @@ struct MatchResult {
   /// Contour methods, not converged: the best motion the judge weighed and declined
   /// (RegistrationResult::rejected); none when it weighed none (too few special points, say).
   std::optional<Eigen::Matrix3d> declined;
+  /// Contour methods, converged: the best-scoring distinct motion the judge weighed and did
+  /// not take (RegistrationResult::rejected); none when it met no distinct rival.
+  std::optional<Eigen::Matrix3d> rival;
   /// Contour methods, ambiguous: the distinct motions that fit the scans about as well, with
   /// their covariances (RegistrationResult::alternatives).
   std::vector<RejectedMotion> alternatives;
