@@ -229,8 +229,33 @@ TEST(Decision, TwoCornersStandOnlyWithALargeOverlap) {
   strict.two_inlier_min_overlap = 0.95;
   const RegistrationResult declined = registerPair(square, target, source, strict);
   EXPECT_FALSE(declined.converged);
-  EXPECT_EQ(declined.status, RegistrationStatus::kTooFewInliers) << declined.reason;
+  EXPECT_EQ(declined.status, RegistrationStatus::kLowOverlap) << declined.reason;
   EXPECT_NE(declined.reason.find("overlap only 8"), std::string::npos) << declined.reason;
+}
+
+// With the contours' own hypotheses off, a motion the corners agree on and the judge declines
+// keeps the judge's verdict as its status: the partition each scan saw through is
+// `contradicted`, the square turned 45 deg `ambiguous` with both turns named.
+TEST(Decision, TheCornersDeclinedMotionNamesTheJudgesVerdict) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  simulation::World before = room, after = room;
+  before.addBox({-3.0, -1.0}, {3.0, -0.9});
+  after.addBox({-1.5, 4.0}, {4.5, 4.1});
+  const RegistrationResult seen_through =
+      registerPair(before, test::pose2d(0.0, 0.4, 10), test::pose2d(0.3, 0.5, 14), withoutContourHypotheses(), &after);
+  EXPECT_FALSE(seen_through.converged);
+  EXPECT_EQ(seen_through.status, RegistrationStatus::kContradicted) << seen_through.reason;
+  EXPECT_TRUE(seen_through.alternatives.empty());
+
+  simulation::World square;
+  square.addPolygon({{-3, -3}, {3, -3}, {3, 3}, {-3, 3}});
+  const RegistrationResult turned =
+      registerPair(square, test::pose2d(0, 0, 0), test::pose2d(0, 0, 45), withoutContourHypotheses());
+  EXPECT_FALSE(turned.converged);
+  EXPECT_EQ(turned.status, RegistrationStatus::kAmbiguous) << turned.reason;
+  ASSERT_EQ(turned.alternatives.size(), 2u) << turned.reason;
+  for (const RejectedMotion &motion : turned.alternatives)
+    EXPECT_NEAR(std::abs(yawOf(motion.transform)), M_PI / 4, 0.02);
 }
 
 TEST(Decision, InliersCloserThanTheirMinimumSpreadAreDegenerate) {

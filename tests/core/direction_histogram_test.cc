@@ -234,6 +234,15 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
       << by_overlap.reason;
 
   EXPECT_FALSE(registerSeeded(source, target, RegistrationParams{}).converged);
+
+  // Without the local fallback after them, each decline keeps the verdict of the check that
+  // made it: a distinct motion fits as well, a direction is left free, too little overlaps.
+  for (RegistrationParams *params : {&probed, &overlapping}) params->local_fallback_min_overlap = 0.0;
+  RegistrationParams hypotheses_alone = withoutCornerChecks();
+  hypotheses_alone.local_fallback_min_overlap = 0.0;
+  EXPECT_EQ(registerSeeded(source, target, hypotheses_alone).status, RegistrationStatus::kAmbiguous);
+  EXPECT_EQ(registerSeeded(source, target, probed).status, RegistrationStatus::kUnconstrained);
+  EXPECT_EQ(registerSeeded(source, target, overlapping).status, RegistrationStatus::kLowOverlap);
 }
 
 TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffAlongARowOfDoorsIsAmbiguous) {

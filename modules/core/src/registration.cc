@@ -52,6 +52,16 @@ void offerRejected(RegistrationResult &result, const RejectedMotion &motion) {
   if (!result.rejected || motion.score > result.rejected->score) result.rejected = motion;
 }
 
+// An ambiguous verdict's alternatives: `best`, then every motion a period along repeated
+// structure that ties with it, or else the rival it ties with.
+void nameAlternatives(RegistrationResult &result, const RejectedMotion &best, decision::Judged &judged,
+                      decision::Scorer &scorer) {
+  result.alternatives = {best};
+  for (decision::ScoredMotion &tie : judged.ties) result.alternatives.push_back(rejected(tie, scorer));
+  if (judged.ties.empty() && judged.rival) result.alternatives.push_back(rejected(*judged.rival, scorer));
+  if (result.alternatives.size() < 2) result.alternatives.clear();
+}
+
 // Largest distance between two of the points.
 double spread(const Points2D &points) {
   double widest = 0.0;
@@ -245,12 +255,13 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     result.transform = refined.transform;
     // The contours must confirm what the corners agree on; a motion they do not confirm goes
     // back to the guess, and the contours' own hypotheses decide.
-    const std::string against =
-        decision::judgeCornerMotion(judged, corners, params, guess, result.candidates, buffers, scorer);
-    if (!against.empty()) {
+    std::string against;
+    const RegistrationStatus verdict =
+        decision::judgeCornerMotion(judged, corners, params, guess, result.candidates, buffers, scorer, against);
+    if (verdict != RegistrationStatus::kConverged) {
       result.rejected = rejected(judged.best, scorer);
-      return failAtGuess(result, guess, RegistrationStatus::kTooFewInliers,
-                         "too few inliers: " + std::to_string(corners) + " special points" + against);
+      if (verdict == RegistrationStatus::kAmbiguous) nameAlternatives(result, *result.rejected, judged, scorer);
+      return failAtGuess(result, guess, verdict, std::to_string(corners) + " special points" + against);
     }
     if (judged.rival) result.rejected = rejected(*judged.rival, scorer);
     if (result.degenerate) result.pinned = decision::pinnedPart(refined, params.refinement);
@@ -263,6 +274,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
 // Few corners: the contours' own hypotheses, refined and judged.
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                       const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, RegistrationResult &result) {
+  result.alternatives.clear();  // the fallback's verdict replaces the corners'
   const RefinementParams wide = decision::widened(params);
   std::vector<RefinementStart> &starts = buffers.starts;
   decision::contourHypotheses(source, target, params, guess, result.candidates, wide, starts);
@@ -282,12 +294,7 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
     const RejectedMotion best = rejected(judged.best, scorer);
     offerRejected(result, best);
     if (declined) offerRejected(result, *declined);
-    if (verdict == RegistrationStatus::kAmbiguous && !judged.ties.empty()) {
-      result.alternatives = {best};
-      for (decision::ScoredMotion &tie : judged.ties) result.alternatives.push_back(rejected(tie, scorer));
-    } else if (verdict == RegistrationStatus::kAmbiguous && judged.rival) {
-      result.alternatives = {best, rejected(*judged.rival, scorer)};
-    }
+    if (verdict == RegistrationStatus::kAmbiguous) nameAlternatives(result, best, judged, scorer);
     return;
   }
   const RefinementResult &refined = judged.best.refined;

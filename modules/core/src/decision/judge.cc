@@ -230,34 +230,44 @@ Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Mat
   return result;
 }
 
-std::string judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
-                              const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
-                              RegistrationBuffers &buffers, Scorer &scorer) {
+RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
+                                     const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
+                                     RegistrationBuffers &buffers, Scorer &scorer, std::string &against) {
   const RefinementResult &refined = found.best.refined;
-  if (found.ambiguous) return ", but the contours fit a distinct motion of other corners as well";
+  const auto verdict = [&](RegistrationStatus status, std::string what) {
+    against = std::move(what);
+    return status;
+  };
+  if (found.ambiguous)
+    return verdict(RegistrationStatus::kAmbiguous, ", but the contours fit a distinct motion of other corners as well");
   // Two corners need a large overlap, more a modest one.
   const double min_overlap = corners == 2 ? params.two_inlier_min_overlap : params.corner_min_overlap;
   if (refined.overlap < min_overlap)
-    return " agree, but the contours overlap only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
-           " % after alignment";
+    return verdict(RegistrationStatus::kLowOverlap, " agree, but the contours overlap only " +
+                                                        std::to_string(static_cast<int>(100 * refined.overlap)) +
+                                                        " % after alignment");
   // A few corners, often along one wall, pin the motion no better than they are spread:
   // the contours must pin it too.
   if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&
       !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
-    return ", and the contours leave a direction weakly constrained";
+    return verdict(RegistrationStatus::kUnconstrained, ", and the contours leave a direction weakly constrained");
   if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
       !standsAgainstGuess(found, params, guess, buffers, scorer))
-    return ", and the contours fit a distinct motion from the guess as well";
+    return verdict(RegistrationStatus::kAmbiguous, ", and the contours fit a distinct motion from the guess as well");
   if (!standsAgainstContours(found, params, guess, pairs, buffers, scorer))
-    return contradicted(found, scorer)
-               ? ", but the other scan saw through part of it and the contours fit a distinct motion as well"
-               : ", but they put only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
-                     " % of the contour on the target and the contours fit a distinct motion as well";
+    return verdict(RegistrationStatus::kAmbiguous,
+                   contradicted(found, scorer)
+                       ? ", but the other scan saw through part of it and the contours fit a distinct motion as well"
+                       : ", but they put only " + std::to_string(static_cast<int>(100 * refined.overlap)) +
+                             " % of the contour on the target and the contours fit a distinct motion as well");
   std::string seen_through;
-  if (refuted(found, scorer, seen_through)) return ", but the other scan saw through " + seen_through;
+  if (refuted(found, scorer, seen_through))
+    return verdict(RegistrationStatus::kContradicted, ", but the other scan saw through " + seen_through);
   if (!standsAgainstRepetition(found, params, buffers, scorer))
-    return ", and a motion a period along repeated structure fits what both scans saw as well";
-  return {};
+    return verdict(RegistrationStatus::kAmbiguous,
+                   ", and a motion a period along repeated structure fits what both scans saw as well");
+  against.clear();
+  return RegistrationStatus::kConverged;
 }
 
 RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,

@@ -55,13 +55,14 @@ struct Judged {
 /// Picks the best of `refined` (not empty). A single candidate is not scored: nothing to compare.
 Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Matrix3d *guess, Scorer &scorer);
 
-/// The verdict on a motion that `corners` distinct inlier special points agree on: empty when
-/// the contours confirm it, otherwise what they found against it (to follow "N special points").
+/// The verdict on a motion that `corners` distinct inlier special points agree on: converged
+/// when the contours confirm it, otherwise low overlap, unconstrained, ambiguous or
+/// contradicted, with what they found against it in `against` (to follow "N special points").
 /// `pairs` are the candidate pairs of special points, from which the contours' hypotheses are
 /// drawn when the free space contradicts the motion.
-std::string judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
-                              const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
-                              RegistrationBuffers &buffers, Scorer &scorer);
+RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
+                                     const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
+                                     RegistrationBuffers &buffers, Scorer &scorer, std::string &against);
 
 /// The verdict on the contours' own best motion when the corners did not decide: converged,
 /// low overlap, unconstrained, ambiguous or contradicted, with the reason in `why`.

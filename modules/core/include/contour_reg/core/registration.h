@@ -90,9 +90,10 @@ struct RegistrationParams {
   bool validate(std::string *why = nullptr) const;
 };
 
-/// The verdict of a registration. The corners' verdicts come first; when the local fallback
-/// runs and finds no acceptable motion either, its verdict (low overlap, unconstrained,
-/// ambiguous, contradicted) replaces theirs, and `reason` keeps both.
+/// The verdict of a registration. The corners' verdicts come first (for a motion they agree
+/// on, the judge's: low overlap, unconstrained, ambiguous, contradicted); when the local
+/// fallback runs and finds no acceptable motion either, its verdict (one of the same four)
+/// replaces theirs, and `reason` keeps both.
 enum class RegistrationStatus {
   kConverged,
   kInvalidParameters,
