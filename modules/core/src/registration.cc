@@ -73,8 +73,7 @@ double spread(const Points2D &points) {
 }  // namespace
 
 bool RegistrationParams::validate(std::string *why) const {
-  if (!correspondence.validate(why) || !ransac.validate(why) || !refinement.validate(why) ||
-      !direction_histogram.validate(why) || !free_space.validate(why))
+  if (!correspondence.validate(why) || !ransac.validate(why) || !refinement.validate(why) || !free_space.validate(why))
     return false;
   if (!(local_fallback_max_distance > 0.0)) {
     if (why) *why = "local_fallback_max_distance must be > 0";

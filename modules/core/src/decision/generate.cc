@@ -45,7 +45,7 @@ void contourHypotheses(const ContourFeatures &source, const ContourFeatures &tar
     }
   }
   if (params.direction_hypotheses)
-    for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, params.direction_histogram, guess))
+    for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, DirectionHistogramParams{}, guess))
       starts.push_back({motion, &params.refinement});
 }
 

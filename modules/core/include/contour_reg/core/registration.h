@@ -25,7 +25,6 @@
 
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/correspondence.h"
-#include "contour_reg/core/direction_histogram.h"
 #include "contour_reg/core/free_space.h"
 #include "contour_reg/core/ransac.h"
 #include "contour_reg/core/refinement.h"
@@ -36,7 +35,6 @@ struct RegistrationParams {
   CorrespondenceParams correspondence;
   RansacParams ransac;
   RefinementParams refinement;
-  DirectionHistogramParams direction_histogram;
   /// Free-space evidence: where distinct motions compete (RANSAC's rivals, the probes, the
   /// guess's refinement, the local fallback's starts), each is scored by its contour overlap
   /// less the share of contour it puts in the other scan's free space (free_space.h), both
@@ -67,7 +65,9 @@ struct RegistrationParams {
   double local_fallback_min_overlap = 0.4;
   /// m, the refinement of the guess in the local fallback starts pairing points this far apart.
   double local_fallback_max_distance = 1.0;
-  /// Motions from the contours' direction and wall-offset histograms join the fallback's starts.
+  /// Motions from the contours' direction and wall-offset histograms join the fallback's starts
+  /// (directionHypotheses with the default DirectionHistogramParams: its bins and peaks are
+  /// the generator's own, not a user's setting).
   bool direction_hypotheses = true;
   /// m, the probe: the local fallback's motion, refined again from this far off along its
   /// weakest direction (RefinementResult::weakest_direction), both ways, must settle back or
