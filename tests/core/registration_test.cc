@@ -1,5 +1,6 @@
 #include "contour_reg/core/registration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <tuple>
@@ -27,6 +28,56 @@ TEST(Correspondence, FragmentDistanceIsEquation14) {
   double expected = 0.0;
   for (std::size_t m = 0; m < g.size(); ++m) expected += std::norm(g[m] - n[m]);
   EXPECT_NEAR(fragmentDistanceSquared(g, n, FragmentDistance::kReal), expected, 1e-12);
+}
+
+// The kd-tree search (both scans with at least kdtree_min_points special points) ranks the same
+// candidates as the search over all pairs when it is asked for more neighbours than there are
+// targets: the furnished room's corners, seen from two poses.
+TEST(Correspondence, TheKdTreeFindsThePairsTheSearchOverAllPairsFinds) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  const ContourFeatures a = extractContourFeatures(test::scanFrom(room, test::pose2d(0, 0, 10), 0.005, 1), {});
+  const ContourFeatures b = extractContourFeatures(test::scanFrom(room, test::pose2d(0.3, 0.1, 14), 0.005, 2), {});
+  ASSERT_GE(a.special_points.size(), 6u);
+  ASSERT_LE(b.special_points.size(), 16u);  // under the 4 x 3 + 4 neighbours the tree returns
+  for (int candidates : {1, 3}) {
+    CorrespondenceParams all_pairs, tree;
+    all_pairs.candidates_per_point = tree.candidates_per_point = candidates;
+    all_pairs.kdtree_min_points = 1000;
+    tree.kdtree_min_points = 1;
+    const auto key = [](const Correspondence &c) { return std::make_pair(c.source, c.target); };
+    std::vector<std::pair<int, int>> expected, found;
+    for (const Correspondence &c : findCorrespondences(a.special_points, b.special_points, all_pairs))
+      expected.push_back(key(c));
+    for (const Correspondence &c : findCorrespondences(a.special_points, b.special_points, tree))
+      found.push_back(key(c));
+    std::sort(expected.begin(), expected.end());
+    std::sort(found.begin(), found.end());
+    ASSERT_FALSE(expected.empty());
+    EXPECT_EQ(found, expected) << candidates << " candidates";
+  }
+}
+
+// Special points whose fragments differ in length (extracted with different fragment lengths,
+// or built by hand) are compared over the shorter one, by either search: the tree must not
+// lay the longer ones into rows sized for the others.
+TEST(Correspondence, FragmentsOfDifferentLengthsArePairedAsOverAllPairs) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  ContourParams longer;
+  longer.special_points.fragment_half_length = 12;
+  const ContourFeatures a = extractContourFeatures(test::scanFrom(room, test::pose2d(0, 0, 10), 0.005, 1), longer);
+  const ContourFeatures b = extractContourFeatures(test::scanFrom(room, test::pose2d(0.3, 0.1, 14), 0.005, 2), {});
+  ASSERT_FALSE(a.special_points.empty());
+  ASSERT_GT(a.special_points.front().fragment.size(), b.special_points.front().fragment.size());
+  CorrespondenceParams all_pairs, tree;
+  all_pairs.kdtree_min_points = 1000;
+  tree.kdtree_min_points = 1;
+  const std::vector<Correspondence> expected = findCorrespondences(a.special_points, b.special_points, all_pairs);
+  const std::vector<Correspondence> found = findCorrespondences(a.special_points, b.special_points, tree);
+  ASSERT_EQ(found.size(), expected.size());
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    EXPECT_EQ(found[k].source, expected[k].source);
+    EXPECT_EQ(found[k].target, expected[k].target);
+  }
 }
 
 using Variant = std::tuple<TransformModel, FragmentDistance>;

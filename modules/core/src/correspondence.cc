@@ -86,8 +86,16 @@ void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vec
   pairs.clear();
   if (source.empty() || target.empty()) return;
   // Candidate targets of each source point: every target (small sets) or the nearest
-  // fragments from a kd-tree (large sets).
-  const bool use_tree = source.size() >= params.kdtree_min_points && target.size() >= params.kdtree_min_points;
+  // fragments from a kd-tree (large sets). The tree holds fragments as vectors of one length:
+  // fragments of other lengths (other extraction settings, points made by hand) are compared
+  // over all pairs, over the shorter fragment.
+  const std::size_t length = target.front().fragment.size();
+  const auto ofLength = [length](const std::vector<SpecialPoint> &points) {
+    return std::all_of(points.begin(), points.end(),
+                       [&](const SpecialPoint &p) { return p.fragment.size() == length; });
+  };
+  const bool use_tree = source.size() >= params.kdtree_min_points && target.size() >= params.kdtree_min_points &&
+                        length > 0 && ofLength(source) && ofLength(target);
   const std::size_t per_source =
       use_tree ? std::min<std::size_t>(target.size(), 4 * static_cast<std::size_t>(params.candidates_per_point) + 4)
                : target.size();

@@ -14,7 +14,9 @@
 /// `candidates_per_point` targets (with one, only mutual best matches that pass the ratio
 /// test, the paper's one-to-one correspondence). Above `kdtree_min_points` special points
 /// a FLANN kd-tree over the fragments finds the candidates (n log n); below, all pairs
-/// are compared, which is faster for the few dozen corners of a typical scan.
+/// are compared, which is faster for the few dozen corners of a typical scan. Fragments of
+/// different lengths (special points of other extraction settings) are always compared over
+/// all pairs, over the shorter fragment.
 
 #include <string>
 #include <vector>
