@@ -126,10 +126,13 @@ std::string printed(const char *format, ...) {
   return text;
 }
 
-// A motion the CSV gives (x m, y m, yaw rad): the declined one, the rival; empty fields when there is none.
-std::string motionFields(const std::optional<Eigen::Matrix3d> &motion) {
-  if (!motion) return ",,";
-  return printed("%.4f,%.4f,%.5f", (*motion)(0, 2), (*motion)(1, 2), yawOf(*motion));
+// The CSV's motion the judge did not take (x m, y m, yaw rad), in the declined columns or in the
+// rival columns as the registration converged, empty fields elsewhere.
+std::string rejectedFields(const odometry::MatchResult &match) {
+  if (!match.rejected) return ",,,,,";
+  const Eigen::Matrix3d &m = *match.rejected;
+  const std::string fields = printed("%.4f,%.4f,%.5f", m(0, 2), m(1, 2), yawOf(m));
+  return match.converged ? ",,," + fields : fields + ",,,";
 }
 
 // A relation's stamp this close to a scan's stamp is the scan's (s).
@@ -272,8 +275,8 @@ int runRelations(const RelationsOptions &options) {
         const io::Pose2D laser_motion = io::toPose(laser_transform);
         match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
         match.transform = io::toMatrix(io::robotMotion(laser_motion, *log.laser_pose));
-        for (std::optional<Eigen::Matrix3d> *motion : {&match.declined, &match.rival})
-          if (*motion) *motion = io::toMatrix(io::robotMotion(io::toPose(**motion), *log.laser_pose));
+        if (match.rejected)
+          match.rejected = io::toMatrix(io::robotMotion(io::toPose(*match.rejected), *log.laser_pose));
       }
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
@@ -282,11 +285,14 @@ int runRelations(const RelationsOptions &options) {
       const bool ok = within({et, er});
       converged += match.converged;
       if (!match.converged) ++reasons[match.status];
-      if (!match.converged && match.declined)
-        declined_right[match.status] += within(apart(*match.declined, io::toMatrix(r.motion)));
-      if (match.converged && match.rival) {
-        ++with_rival;
-        rival_right += within(apart(*match.rival, io::toMatrix(r.motion)));
+      if (match.rejected) {
+        const bool right = within(apart(*match.rejected, io::toMatrix(r.motion)));
+        if (match.converged) {
+          ++with_rival;
+          rival_right += right;
+        } else {
+          declined_right[match.status] += right;
+        }
       }
       wrong += match.converged && !ok;
       answered.push_back({match.converged, match.converged && !ok, t});
@@ -310,12 +316,11 @@ int runRelations(const RelationsOptions &options) {
         const Eigen::Matrix3d &c = match.covariance;
         std::fprintf(csv,
                      "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\","
-                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f,%s,%s\n",
+                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f,%s\n",
                      name.c_str(), pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2),
                      t(1, 2), yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er, match.milliseconds,
                      match.converged ? "converged" : match.status.c_str(), match.reason.c_str(), c(0, 0), c(0, 1),
-                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space,
-                     motionFields(match.declined).c_str(), motionFields(match.rival).c_str());
+                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space, rejectedFields(match).c_str());
       }
       if (match.converged && !match.covariance.isZero())
         nees.push_back(evaluation::normalisedErrorSquared(io::toPose(t), r.motion, match.covariance,

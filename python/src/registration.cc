@@ -17,9 +17,10 @@ std::string methodList() {
   return names;
 }
 
-// A 3 x 3 transform as an array, or None.
-py::object matrixOrNone(const std::optional<Eigen::Matrix3d> &m) {
-  return m ? py::object(matrixArray(*m)) : py::object(py::none());
+// The motion the judge did not take as a 3 x 3 array when the registration `converged` as
+// asked (the declined one: not converged; the rival: converged), else None.
+py::object rejectedOrNone(const odometry::MatchResult &r, bool converged) {
+  return r.rejected && r.converged == converged ? py::object(matrixArray(*r.rejected)) : py::object(py::none());
 }
 
 // (vx m/s, vy m/s, wz rad/s), or none.
@@ -72,11 +73,11 @@ void bindRegistration(py::module_ &m) {
           "covariance", [](const odometry::MatchResult &r) { return matrixArray(r.covariance); },
           "3 x 3 covariance of (x, y, yaw), m^2 and rad^2; zero when the method gives none")
       .def_property_readonly(
-          "declined", [](const odometry::MatchResult &r) { return matrixOrNone(r.declined); },
+          "declined", [](const odometry::MatchResult &r) { return rejectedOrNone(r, false); },
           "contour methods, not converged: the 3 x 3 transform of the best motion weighed and declined; "
           "None when none was weighed")
       .def_property_readonly(
-          "rival", [](const odometry::MatchResult &r) { return matrixOrNone(r.rival); },
+          "rival", [](const odometry::MatchResult &r) { return rejectedOrNone(r, true); },
           "contour methods, converged: the 3 x 3 transform of the best-scoring distinct motion the judge weighed "
           "and did not take; None when it met none")
       .def_property_readonly(

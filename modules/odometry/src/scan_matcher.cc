@@ -193,13 +193,11 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
     result.covariance = contour_->getCovariance();
     result.inliers = contour_->getResult().inliers.size();
     result.pinned = contour_->getResult().pinned;
-    if (contour_->hasConverged() && contour_->getResult().rejected)
-      result.rival = contour_->getResult().rejected->transform;
+    if (contour_->getResult().rejected && contour_->hasConverged() == result.converged)
+      result.rejected = contour_->getResult().rejected->transform;
     if (!contour_->hasConverged()) {
       result.reason = contour_->getFailureReason();
       result.status = toString(contour_->getResult().status);
-      if (!result.converged && contour_->getResult().rejected)
-        result.declined = contour_->getResult().rejected->transform;
       result.alternatives = contour_->getResult().alternatives;
     }
   }

@@ -42,12 +42,12 @@ struct MatchResult {
   std::size_t inliers = 0;  ///< contour methods: the special-point pairs the motion rests on (0 otherwise)
   /// Contour methods: what the scans pin when they leave one direction free (RegistrationResult::pinned).
   std::optional<PinnedMotion> pinned;
-  /// Contour methods, not converged: the best motion the judge weighed and declined
-  /// (RegistrationResult::rejected); none when it weighed none (too few special points, say).
-  std::optional<Eigen::Matrix3d> declined;
-  /// Contour methods, converged: the best-scoring distinct motion the judge weighed and did
-  /// not take (RegistrationResult::rejected); none when it met no distinct rival.
-  std::optional<Eigen::Matrix3d> rival;
+  /// Contour methods: the best motion the judge weighed and did not take
+  /// (RegistrationResult::rejected). Not converged: the motion it declined; converged: the
+  /// best distinct rival of the answer. None when it weighed none (too few special points, a
+  /// converged motion without a distinct rival), or when a later stage (contour+icp's ICP)
+  /// decided otherwise than the judge.
+  std::optional<Eigen::Matrix3d> rejected;
   /// Contour methods, ambiguous: the distinct motions that fit the scans about as well, with
   /// their covariances (RegistrationResult::alternatives).
   std::vector<RejectedMotion> alternatives;
