@@ -160,21 +160,24 @@ bool standsAgainstContours(Judged &found, const RegistrationParams &params, cons
 }
 
 // Whether the best stands against the motions a period of repeated structure off it
-// (repetition.h): none that refines to a distinct motion, contradicted no more than the best,
-// lays nearly as much of the view both share on the target contour. Weighed with the free
-// space only: what the target saw decides what the two share.
+// (repetition.h): none that refines to a distinct motion scores higher than the best, and none,
+// contradicted no more than the best, lays nearly as much of the view both share on the target
+// contour. The second is weighed with the free space only: what the target saw decides what
+// the two share. A motion that scores higher is the rival (Judged::rival) when this says no.
 bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                              Scorer &scorer) {
   if (!params.free_space.enabled) return true;
   const RefinementResult &best = found.best.refined;
   periodShifts(best.transform, scorer.source(), scorer.target(), buffers.repetition);
   if (buffers.repetition.shifted.empty()) return true;
-  const double against_best = best.overlap - scorer.score(found.best);
+  const double best_score = scorer.score(found.best);
+  const double against_best = best.overlap - best_score;
   for (const Eigen::Matrix3d &start : buffers.repetition.shifted) {
     const RefinementResult rival = buffers.refiner.refine(buffers.samples, start, params.refinement);
     if (motionDistance(rival.transform, best.transform) <= kDistinctMotions) continue;
     const double score = scorer.score(rival);
     found.consider(rival, score);
+    if (score > best_score) return false;  // the best is not the best of what the judge weighed
     if (rival.overlap - score > against_best + kScoreTie) continue;
     const SharedViewFit fit = sharedViewFit(buffers.samples, buffers.refiner, scorer.targetView(), best.transform,
                                             rival.transform, params.refinement.min_distance, params.free_space.margin);
@@ -279,27 +282,37 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
           " % of the source contour lies on the target";
     return true;
   };
-  if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;
-  if (!pinnedAfterPromotions(found, params, buffers, scorer)) {
-    why = "refined on the contours, a direction stays weakly constrained (corridor, circle)";
-    return RegistrationStatus::kUnconstrained;
+  // A motion a period along repeated structure that scores clearly better than the best (by
+  // more than the tie) takes its place and is judged in turn, at most kMaxPromotions times: the
+  // contours' hypotheses can all lie a period off along a corridor of evenly spaced doors.
+  for (int promoted = 0;; ++promoted) {
+    if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;
+    if (!pinnedAfterPromotions(found, params, buffers, scorer)) {
+      why = "refined on the contours, a direction stays weakly constrained (corridor, circle)";
+      return RegistrationStatus::kUnconstrained;
+    }
+    if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;  // a motion a probe found
+    if (found.ambiguous) {
+      why = "refined on the contours, distinct motions fit equally well (repeated structure)";
+      return RegistrationStatus::kAmbiguous;
+    }
+    std::string seen_through;
+    if (refuted(found, scorer, seen_through)) {
+      why = "refined on the contours, the other scan saw through " + seen_through;
+      return RegistrationStatus::kContradicted;
+    }
+    if (!standsAgainstRepetition(found, params, buffers, scorer)) {
+      if (promoted < kMaxPromotions && found.rival && found.rival->score > scorer.score(found.best) + kScoreTie) {
+        found.promoteRival();
+        found.ties.clear();  // they tied with the motion demoted
+        continue;
+      }
+      why = "refined on the contours, a motion a period along repeated structure fits what both scans saw as well";
+      return RegistrationStatus::kAmbiguous;
+    }
+    why.clear();
+    return RegistrationStatus::kConverged;
   }
-  if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;  // a motion a probe found
-  if (found.ambiguous) {
-    why = "refined on the contours, distinct motions fit equally well (repeated structure)";
-    return RegistrationStatus::kAmbiguous;
-  }
-  std::string seen_through;
-  if (refuted(found, scorer, seen_through)) {
-    why = "refined on the contours, the other scan saw through " + seen_through;
-    return RegistrationStatus::kContradicted;
-  }
-  if (!standsAgainstRepetition(found, params, buffers, scorer)) {
-    why = "refined on the contours, a motion a period along repeated structure fits what both scans saw as well";
-    return RegistrationStatus::kAmbiguous;
-  }
-  why.clear();
-  return RegistrationStatus::kConverged;
 }
 
 std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const RefinementParams &params) {
