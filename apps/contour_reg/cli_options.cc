@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -11,6 +12,17 @@
 #include "contour_reg/core/registration.h"
 
 namespace contour_reg::cli {
+
+std::string printed(const char *format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  std::string text(static_cast<std::size_t>(std::max(0, std::vsnprintf(nullptr, 0, format, args))), '\0');
+  va_end(args);
+  std::vsnprintf(text.data(), text.size() + 1, format, again);
+  va_end(again);
+  return text;
+}
 
 void printReadReport(const io::ScanLog &log) {
   for (const std::string &problem : log.report.problems) std::fprintf(stderr, "warning: %s\n", problem.c_str());

@@ -211,6 +211,16 @@ inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames(
 /// Prints the reader's warnings (skipped lines, the first few described) to stderr.
 void printReadReport(const io::ScanLog &log);
 
+/// The motion over scan k's sweep, by the wheel odometry, as the odometry deskews it: none when
+/// `deskew` is off or the scan carries no beam timing.
+inline SweepMotion sweepToDeskew(const io::ScanLog &log, std::size_t k, bool deskew) {
+  const bool timed = deskew && log.entries[k].scan.time_increment > 0.0;
+  return timed ? odometry::wheelMotionOverSweep(log, k).value_or(SweepMotion{}) : SweepMotion{};
+}
+
+/// printf into a string.
+std::string printed(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
 /// With the guess "odom", warns on stderr of scans of `log` without wheel odometry: their
 /// registrations start from no motion.
 void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, const io::LogReadOptions &read);

@@ -36,6 +36,7 @@ inline void runCommand(const std::function<int()> &body) {
 void addFeaturesCommand(CLI::App &app);
 void addSimulateCommand(CLI::App &app);
 void addRelationsCommand(CLI::App &app);
+void addClosureCommand(CLI::App &app);
 void addOdometryCommand(CLI::App &app);
 void addEvaluateCommand(CLI::App &app);
 void addCompareCommand(CLI::App &app);

@@ -60,6 +60,7 @@ int main(int argc, char **argv) {
   contour_reg::cli::addEvaluateCommand(app);
   contour_reg::cli::addCompareCommand(app);
   contour_reg::cli::addRelationsCommand(app);
+  contour_reg::cli::addClosureCommand(app);
   contour_reg::cli::addDebugCommand(app);
   contour_reg::cli::addExperimentCommand(app);
   if (reportUnknownCommand(app, argc, argv)) return 2;

@@ -2,7 +2,6 @@
 // with several methods and reports how many each recovers, and how fast.
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -111,19 +110,6 @@ std::vector<std::string> agreementLines(const std::vector<std::string> &methods,
                     " of them" + (names.empty() ? "" : " (" + names + ")"));
   }
   return lines;
-}
-
-// printf into a string.
-std::string printed(const char *format, ...) __attribute__((format(printf, 1, 2)));
-std::string printed(const char *format, ...) {
-  va_list args, again;
-  va_start(args, format);
-  va_copy(again, args);
-  std::string text(static_cast<std::size_t>(std::max(0, std::vsnprintf(nullptr, 0, format, args))), '\0');
-  va_end(args);
-  std::vsnprintf(text.data(), text.size() + 1, format, again);
-  va_end(again);
-  return text;
 }
 
 // The CSV's motion the judge did not take (x m, y m, yaw rad), in the declined columns or in the
@@ -238,11 +224,7 @@ int runRelations(const RelationsOptions &options) {
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
-  // The motion over a timed scan's sweep, by the wheel odometry, as the odometry deskews it.
-  auto sweep = [&](std::size_t k) {
-    const bool timed = options.deskew && log.entries[k].scan.time_increment > 0.0;
-    return timed ? odometry::wheelMotionOverSweep(log, k).value_or(SweepMotion{}) : SweepMotion{};
-  };
+  const auto sweep = [&](std::size_t k) { return sweepToDeskew(log, k, options.deskew); };
   std::fflush(stdout);
   std::vector<std::string> failures;          // printed after the table
   std::vector<std::string> gross_lines;       // likewise

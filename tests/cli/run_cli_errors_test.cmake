@@ -98,6 +98,19 @@ expect_match("${LAST_ERR}" "no scan pair: none of the 2 relations has a scan of 
 expect_run(1 relations ${LOG} --gt ${WORK_DIR}/other.gt.tum --methods contour)
 expect_match("${LAST_ERR}" "no scan pair: .*other.gt.tum has no pose at the stamps of scans 1 apart")
 
+# closure needs three scans, and checks its options before any work.
+file(STRINGS ${LOG} laser_lines REGEX "^(FLASER|ROBOTLASER1) ")
+list(SUBLIST laser_lines 0 2 two_lines)
+string(REPLACE ";" "\n" two_scans "${two_lines}")
+file(WRITE ${WORK_DIR}/two.clf "${two_scans}\n")
+expect_run(1 closure ${WORK_DIR}/two.clf)
+expect_match("${LAST_ERR}" "no triangle: .*two.clf has 2 scans, need 3")
+expect_run(2 closure ${LOG} --threshold -1 --triangles-csv ${OUT}/t.csv)
+expect_match("${LAST_ERR}" "--threshold")
+expect_run(2 closure ${LOG} --triangles-csv ${WORK_DIR}/missing/t.csv)
+expect_match("${LAST_ERR}" "--triangles-csv: .*missing/t.csv: folder")
+expect_nothing_written()
+
 # simulate writes its ground truth where compare finds it.
 expect_run(2 simulate --path line --rate 2 --output ${WORK_DIR}/nowhere/s.clf)
 expect_match("${LAST_ERR}" "--output: .*nowhere/s.clf: folder")

@@ -2,7 +2,7 @@
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test_support.cmake)
 
 # Every subcommand has --help.
-foreach(command features simulate odometry evaluate compare relations debug)
+foreach(command features simulate odometry evaluate compare relations closure debug)
   expect_run(0 ${command} --help)
 endforeach()
 
@@ -53,6 +53,20 @@ foreach(file table.md results.csv L-hokuyo-2hz.contour.tum L-hokuyo-2hz.icp.tum 
     message(FATAL_ERROR "compare did not write ${file}")
   endif()
 endforeach()
+
+# closure weighs how far registrations around triangles of scans fail to compose, by their
+# covariances: a row per method ('-' where a method gives no covariance), a CSV row per triangle.
+expect_run(0 closure ${LOG} --methods contour icp --triangles-csv ${WORK_DIR}/triangles.csv)
+expect_match("${LAST_OUT}" "97 triangles of scans k, k \\+ 1, k \\+ 2")
+expect_match("${LAST_OUT}" "\\| contour \\| ([0-9]+) of 97 \\| [0-9]+ \\| [0-9]+\\.[0-9][0-9] \\| [0-9.]+ % \\|")
+string(REGEX MATCH "\\| contour \\| ([0-9]+) of" row "${LAST_OUT}")
+set(closed_contour ${CMAKE_MATCH_1})
+expect_match("${LAST_OUT}" "\\| icp \\| [0-9]+ of 97 \\| [0-9]+ \\| - \\| - \\| - \\| - \\|")
+file(STRINGS ${WORK_DIR}/triangles.csv rows REGEX "^contour,")
+list(LENGTH rows count)
+if(NOT count EQUAL closed_contour)
+  message(FATAL_ERROR "closure --triangles-csv wrote ${count} contour rows for ${closed_contour} closed triangles")
+endif()
 
 # debug draws the scan and the pair.
 expect_run(0 debug ${LOG} --scan 30 --out ${WORK_DIR}/pictures)

@@ -1,0 +1,151 @@
+// contour_reg closure: checks a method's covariance on a log without any reference, by
+// closing triangles of registrations (scans k -> k + 1 -> k + 2 against k -> k + 2).
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+
+#include <pcl/console/print.h>
+
+#include "cli_options.h"
+#include "commands.h"
+#include "contour_reg/evaluation/closure.h"
+#include "contour_reg/evaluation/metrics.h"
+#include "contour_reg/io/pose2d.h"
+#include "contour_reg/io/read_log.h"
+#include "contour_reg/odometry/odometry.h"
+#include "contour_reg/odometry/scan_matcher.h"
+
+namespace contour_reg::cli {
+
+namespace {
+
+// A closure this far from the identity means one of its three registrations is grossly wrong,
+// not that its covariance is too small (m, deg; as relations' gross errors).
+constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;
+
+struct ClosureOptions {
+  std::string input;
+  std::vector<std::string> methods = {"contour"};
+  std::size_t limit = 0;
+  std::string triangles_csv;  // one row per triangle and method, when set
+  bool deskew = true;
+  io::LogReadOptions read;
+  MethodOptions method_options;
+};
+
+int runClosure(const ClosureOptions &options) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const io::ScanLog log = io::readLog(options.input, options.read);
+  printReadReport(log);
+  std::size_t triangles = log.entries.size() >= 3 ? log.entries.size() - 2 : 0;
+  if (options.limit > 0) triangles = std::min(triangles, options.limit);
+  if (triangles == 0) {
+    std::fprintf(stderr, "error: no triangle: %s has %zu scans, need 3\n", options.input.c_str(), log.entries.size());
+    return 1;
+  }
+  std::printf(
+      "%s: %zu triangles of scans k, k + 1, k + 2 (k -> k + 2 against k -> k + 1 -> k + 2), zero guess, "
+      "no reference\n\n",
+      options.input.c_str(), triangles);
+  std::FILE *csv = nullptr;
+  if (!options.triangles_csv.empty()) {
+    csv = std::fopen(options.triangles_csv.c_str(), "w");
+    if (!csv) throw std::runtime_error("cannot write " + options.triangles_csv);
+    std::fprintf(csv, "method,k,closed,error_x_m,error_y_m,error_yaw_rad,nees,nees_translation,nees_yaw\n");
+  }
+  std::printf(
+      "| method | triangles closed | gross closures (> 25 cm or 5 deg) | mean NEES | NEES > %.2f (outside the 99 %% "
+      "ellipsoid) | translation NEES > 9.21 | yaw NEES > 6.63 |\n",
+      evaluation::kNees99);
+  std::printf("|---|---|---|---|---|---|---|\n");
+  const auto sweep = [&](std::size_t k) { return sweepToDeskew(log, k, options.deskew); };
+  for (const std::string &name : options.methods) {
+    auto matcher = odometry::makeScanMatcher(name, options.method_options.settings());
+    const auto match = [&](std::size_t first, std::size_t second) {
+      return matcher->match(log.entries[first].scan, log.entries[second].scan, Eigen::Matrix3d::Identity(),
+                            sweep(first), sweep(second));
+    };
+    ProgressBar progress(name);
+    std::size_t closed = 0, gross = 0, outside = 0, outside_translation = 0, outside_yaw = 0, with_covariance = 0;
+    std::vector<double> nees;
+    odometry::MatchResult next = match(0, 1);  // k + 1 -> k + 2 of one triangle is k -> k + 1 of the next
+    for (std::size_t k = 0; k < triangles; ++k) {
+      progress(k, triangles);
+      const odometry::MatchResult ab = std::move(next);
+      next = match(k + 1, k + 2);
+      const odometry::MatchResult &bc = next;
+      if (!ab.converged || !bc.converged) continue;
+      const odometry::MatchResult ac = match(k, k + 2);
+      if (!ac.converged) continue;
+      ++closed;
+      const evaluation::TriangleClosure closure =
+          evaluation::triangleClosure(io::toPose(ab.transform), ab.covariance, io::toPose(bc.transform), bc.covariance,
+                                      io::toPose(ac.transform), ac.covariance);
+      const bool gross_closure =
+          closure.error.head<2>().norm() > kGrossMetres || std::abs(closure.error(2)) * 180 / M_PI > kGrossDegrees;
+      gross += gross_closure;
+      const bool covariance = !ab.covariance.isZero() && !bc.covariance.isZero() && !ac.covariance.isZero();
+      double translation = 0.0, yaw = 0.0;
+      if (covariance && !gross_closure) {
+        ++with_covariance;
+        nees.push_back(closure.nees);
+        const Eigen::Vector2d e = closure.error.head<2>();
+        translation = e.dot(closure.covariance.topLeftCorner<2, 2>().ldlt().solve(e));
+        yaw = closure.error(2) * closure.error(2) / closure.covariance(2, 2);
+        outside += closure.nees > evaluation::kNees99;
+        outside_translation += translation > 9.21;  // chi-square, 2 degrees of freedom, 99 %
+        outside_yaw += yaw > 6.63;                  // 1 degree of freedom
+      }
+      if (csv)
+        std::fprintf(csv, "%s,%zu,1,%.5f,%.5f,%.6f,%.4g,%.4g,%.4g\n", name.c_str(), k, closure.error(0),
+                     closure.error(1), closure.error(2), covariance ? closure.nees : 0.0, translation, yaw);
+    }
+    progress.finish();
+    const auto percent = [&](std::size_t count) {
+      return with_covariance
+                 ? printed("%.1f %%", 100.0 * static_cast<double>(count) / static_cast<double>(with_covariance))
+                 : std::string("-");
+    };
+    const std::string mean =
+        nees.empty() ? "-" : printed("%.2f", std::accumulate(nees.begin(), nees.end(), 0.0) / nees.size());
+    std::printf("| %s | %zu of %zu | %zu | %s | %s | %s | %s |\n", name.c_str(), closed, triangles, gross, mean.c_str(),
+                percent(outside).c_str(), percent(outside_translation).c_str(), percent(outside_yaw).c_str());
+    std::fflush(stdout);
+  }
+  std::printf(
+      "\nNEES over the closed triangles that are not gross, of the composition's departure from the identity "
+      "weighed by the three covariances; an honest covariance gives a mean of 3 and 1 %% outside. The three "
+      "registrations share scans, whose own noise largely cancels around a triangle: a share above 1 %% shows "
+      "an over-confident covariance, one below it says less. A method without a covariance shows '-'.\n");
+  if (csv) std::fclose(csv);
+  return 0;
+}
+
+}  // namespace
+
+void addClosureCommand(CLI::App &app) {
+  auto options = std::make_shared<ClosureOptions>();
+  CLI::App *command = app.add_subcommand(
+      "closure",
+      "Check the covariance on a log without a reference: register scans k -> k + 1, k + 1 -> k + 2 and "
+      "k -> k + 2 from a zero guess and weigh how far they fail to compose");
+  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
+      ->required()
+      ->check(CLI::ExistingPath);
+  command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();
+  addReadOptions(*command, options->read);
+  addMethodOptions(*command, options->method_options);
+  command->add_option("--triangles-csv", options->triangles_csv,
+                      "Write one row per closed triangle and method to this CSV file");
+  command->add_option("--limit", options->limit, "At most this many triangles (0: all)")->capture_default_str();
+  addDeskewOption(*command, options->deskew);
+  command->callback([options]() {
+    validateMethodOptions(options->method_options);
+    if (!options->triangles_csv.empty()) checkOutputFile("--triangles-csv", options->triangles_csv);
+    runCommand([&] { return runClosure(*options); });
+  });
+}
+
+}  // namespace contour_reg::cli
