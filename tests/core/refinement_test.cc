@@ -135,6 +135,28 @@ TEST(Refinement, TheStretchesTermOnlyWidensTheCovariance) {
   EXPECT_NE(why.find("correlation_length"), std::string::npos);
 }
 
+// Two views that share less of what they see get a wider covariance, by (0.8 / overlap)^2
+// below an overlap of 0.8: the same pairs, with as many source samples again 100 m away (contour
+// the target never saw), halve the overlap and leave the estimate and the residuals alone.
+TEST(Refinement, TheCovarianceGrowsAsTheViewsShareLessOfTheContour) {
+  const RoomPair pair;
+  const ContourRefiner refiner(pair.target, RefinementParams{});
+  const std::vector<Eigen::Vector2d> shared = contourSamples(pair.source, RefinementParams{}.sample_step);
+  std::vector<Eigen::Vector2d> half_unseen = shared;
+  for (const Eigen::Vector2d &p : shared) half_unseen.push_back(p + Eigen::Vector2d(100.0, 0.0));
+  const Eigen::Matrix3d start = matrixOf(test::pose2d(0.5, -0.05, 7));
+  const RefinementResult all = refiner.refine(shared, start, RefinementParams{});
+  const RefinementResult half = refiner.refine(half_unseen, start, RefinementParams{});
+  ASSERT_GT(all.overlap, 0.8);
+  EXPECT_NEAR(half.overlap, all.overlap / 2, 1e-9);
+  EXPECT_TRUE(half.transform.isApprox(all.transform));
+  const double grown = std::pow(0.8 / half.overlap, 2);
+  EXPECT_GT(grown, 2.0);
+  const Eigen::Matrix2d translation = half.covariance.topLeftCorner<2, 2>() / grown;
+  EXPECT_TRUE(translation.isApprox(all.covariance.topLeftCorner<2, 2>(), 1e-9));
+  EXPECT_TRUE(half.information.isApprox(all.information / grown, 1e-9));
+}
+
 // The refinement stops only after a pass that paired at min_distance: a start already at the
 // motion (its steps small from the first pass) still reports the overlap, rmse and covariance,
 // stretches term included, of the final pairing distance.

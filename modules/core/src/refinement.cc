@@ -156,6 +156,23 @@ struct BearingIndex {
   }
 };
 
+// Below this share of the source contour paired (RefinementResult::overlap), the two views
+// share less of what they see than the covariance's terms assume.
+constexpr double kSharedViewOverlap = 0.8;
+
+// How much the covariance of a refinement that paired `overlap` of the source contour grows:
+// (kSharedViewOverlap / overlap)^2 below kSharedViewOverlap, 1 above. Where two views share
+// less, more of the samples paired lie on surfaces the other scan saw from elsewhere or not at
+// all (occluded, moved, sampled sparsely at another angle), whose errors neither the residuals
+// nor the stretches show. Calibrated on the triangle closure of the Radish logs
+// (docs/reliability.md): on every log the closures leave their ellipsoid more often the less
+// the views overlap.
+double lessSharedViews(double overlap) {
+  if (!(overlap > 0.0) || overlap >= kSharedViewOverlap) return 1.0;
+  const double shortfall = kSharedViewOverlap / overlap;
+  return shortfall * shortfall;
+}
+
 // Units that measure rotation in metres of arc at the RMS range of the paired points
 // (1, 1, 1 / range), so that eigenvalues of translation and rotation compare.
 Eigen::Vector3d arcUnits(double rms_range) { return {1.0, 1.0, rms_range > 1e-6 ? 1.0 / rms_range : 1.0}; }
@@ -427,6 +444,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
                         result.rotation_constraint_ratio <= params.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
+    const double less_shared = lessSharedViews(result.overlap);
     const Eigen::Matrix3d counted_information = h - surplus;
     if (sigma2 > 0.0) result.information = counted_information / (params.covariance_scale * sigma2);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(counted_information);
@@ -442,9 +460,11 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
           if (invertible) result.information = inverse;
         }
       }
+      result.covariance *= less_shared;
       const double turn = params.turn_noise * std::abs(yawOf(result.transform));
       result.covariance(2, 2) += turn * turn;
     }
+    result.information /= less_shared;
   } else {
     result.degenerate = true;
     result.rms_range = 0.0;  // an earlier iteration's, with too few pairs now
