@@ -35,6 +35,7 @@ from ._core import (
     relation_errors,
     relative_pose,
     simulate,
+    triangle_closure,
     write_carmen,
     write_tum,
 )
@@ -43,5 +44,5 @@ __all__ = [
     "Features", "LaserScan", "Log", "OdometryRun", "OdometryStep", "ReadError", "RegistrationResult",
     "SimulatedRun", "evaluate", "features", "matrix_pose", "methods", "normalised_error_squared", "odometry",
     "pose_matrix", "read_log", "read_relations", "read_tum", "register", "relation_errors", "relative_pose",
-    "simulate", "write_carmen", "write_tum",
+    "simulate", "triangle_closure", "write_carmen", "write_tum",
 ]

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "bindings.h"
+#include "contour_reg/evaluation/closure.h"
 #include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"
 
@@ -96,6 +97,25 @@ void bindEvaluation(py::module_ &m) {
       py::arg("reference_sigma") = std::make_pair(0.02, 0.5),
       "NEES of an estimated motion (x, y, yaw) against a reference one under its 3 x 3 covariance, with the "
       "reference's own error (m, deg) added: 3 on average for an honest covariance, above 11.34 for 1 % of them.");
+  m.def(
+      "triangle_closure",
+      [](const py::handle &ab, const py::handle &ab_covariance, const py::handle &bc, const py::handle &bc_covariance,
+         const py::handle &ac, const py::handle &ac_covariance) {
+        const evaluation::TriangleClosure closure = evaluation::triangleClosure(
+            poseOf(ab), matrixOf(ab_covariance, "ab_covariance"), poseOf(bc), matrixOf(bc_covariance, "bc_covariance"),
+            poseOf(ac), matrixOf(ac_covariance, "ac_covariance"));
+        py::dict out;
+        out["error"] = py::make_tuple(closure.error(0), closure.error(1), closure.error(2));
+        out["covariance"] = matrixArray(closure.covariance);
+        out["nees"] = closure.nees;
+        return out;
+      },
+      py::arg("ab"), py::arg("ab_covariance"), py::arg("bc"), py::arg("bc_covariance"), py::arg("ac"),
+      py::arg("ac_covariance"),
+      "A covariance check without a reference: motions ab (scan b in a's frame), bc and ac with their 3 x 3 "
+      "covariances compose to the identity, ac^-1 ab bc; its departure (error: x, y, yaw), the covariance carried "
+      "through the composition and the NEES, chi-square with 3 degrees of freedom for honest covariances "
+      "(docs/reliability.md), as a dict.");
   m.def(
       "relative_pose",
       [](const py::handle &a, const py::handle &b) { return poseTuple(io::between(poseOf(a), poseOf(b))); },

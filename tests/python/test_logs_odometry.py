@@ -121,6 +121,23 @@ def test_normalised_error_squared_weighs_the_error_by_the_covariance_and_the_ref
     assert 0 < cr.normalised_error_squared(result.pose, truth, result.covariance) < 11.34
 
 
+def test_triangle_closure_weighs_how_far_three_registrations_fail_to_compose(s_run):
+    small = np.diag([0.01 ** 2, 0.01 ** 2, 1e-8])
+    # ab and bc no motion, ac 3 cm ahead: 3 cm back, the three variances summed.
+    closure = cr.triangle_closure((0, 0, 0), small, (0, 0, 0), small, (0.03, 0, 0), small)
+    assert closure["error"] == pytest.approx((-0.03, 0, 0), abs=1e-12)
+    assert closure["covariance"][0, 0] == pytest.approx(3e-4)
+    assert closure["nees"] == pytest.approx(3.0, rel=1e-3)
+    # Registrations of scans 5 -> 10, 10 -> 15 and 5 -> 15 of a run close within their covariances.
+    ab, bc, ac = (cr.register(s_run.log[b], s_run.log[a]) for a, b in ((5, 10), (10, 15), (5, 15)))
+    assert ab.converged and bc.converged and ac.converged
+    closure = cr.triangle_closure(ab.pose, ab.covariance, bc.pose, bc.covariance, ac.pose, ac.covariance)
+    assert np.hypot(*closure["error"][:2]) < 0.05
+    assert 0 <= closure["nees"] < 11.34
+    with pytest.raises(ValueError):
+        cr.triangle_closure((0, 0), small, (0, 0, 0), small, (0, 0, 0), small)
+
+
 def test_write_and_read_back(tmp_path, s_run):
     path = tmp_path / "s.clf"
     cr.write_carmen(str(path), s_run.log)
