@@ -527,5 +527,23 @@ TEST(ScanMatcher, EveryMethodRegistersAPairOfTheRoom) {
   EXPECT_EQ(makeScanMatcher("no-such-method"), nullptr);
 }
 
+// A covariance comes only with the estimate it describes: the contour method's; contour+icp's
+// ICP moves the contour stage's estimate, and ICP gives none.
+TEST(ScanMatcher, ACovarianceComesOnlyWithTheEstimateItDescribes) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const simulation::World world = simulation::makeFurnishedRoom();
+  const LaserScan target = test::scanFrom(world, test::pose2d(0.0, 0.0, 0.0), 0.01);
+  const LaserScan source = test::scanFrom(world, test::pose2d(0.1, 0.05, 2.0), 0.01);
+  const MatchResult contour = makeScanMatcher("contour")->match(target, source);
+  ASSERT_TRUE(contour.converged);
+  EXPECT_EQ(contour.covariance.llt().info(), Eigen::Success);
+  for (const std::string name : {"contour+icp", "icp"}) {
+    const MatchResult result = makeScanMatcher(name)->match(target, source);
+    ASSERT_TRUE(result.converged) << name;
+    EXPECT_TRUE(result.covariance.isZero()) << name;
+    EXPECT_FALSE(result.pinned.has_value()) << name;
+  }
+}
+
 }  // namespace
 }  // namespace contour_reg::odometry

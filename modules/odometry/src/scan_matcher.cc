@@ -190,9 +190,13 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
   result.transform = result.converged ? toPlanar(registration_->getFinalTransformation()) : guess;
   if (contour_) {
     result.degenerate = contour_->isDegenerate();
-    result.covariance = contour_->getCovariance();
     result.inliers = contour_->getResult().inliers.size();
-    result.pinned = contour_->getResult().pinned;
+    // The covariance and the pinned part describe the contour stage's estimate: a later stage
+    // (contour+icp's ICP) that moves it gives none.
+    if (static_cast<const Registration *>(contour_) == registration_.get()) {
+      result.covariance = contour_->getCovariance();
+      result.pinned = contour_->getResult().pinned;
+    }
     if (contour_->getResult().rejected && contour_->hasConverged() == result.converged)
       result.rejected = contour_->getResult().rejected->transform;
     if (!contour_->hasConverged()) {

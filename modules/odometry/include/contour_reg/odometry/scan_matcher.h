@@ -38,9 +38,11 @@ struct MatchResult {
   std::string status;         ///< short failure class ("too_few_special_points", "not_converged"); "" when converged
   std::string reason;         ///< why not converged, in words ("" when converged)
   double milliseconds = 0.0;  ///< registration only (features of new scans included)
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw; zero when the method gives none
+  /// x, y, yaw; zero when the method gives none (ICP, NDT, GICP, and contour+icp, whose ICP
+  /// moves the contour stage's estimate away from what its covariance describes).
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   std::size_t inliers = 0;  ///< contour methods: the special-point pairs the motion rests on (0 otherwise)
-  /// Contour methods: what the scans pin when they leave one direction free (RegistrationResult::pinned).
+  /// The contour method: what the scans pin when they leave one direction free (RegistrationResult::pinned).
   std::optional<PinnedMotion> pinned;
   /// Contour methods: the best motion the judge weighed and did not take
   /// (RegistrationResult::rejected). Not converged: the motion it declined; converged: the
@@ -81,8 +83,8 @@ Cloud::Ptr beamCloud(const LaserScan &scan, const SweepMotion &motion = {});
 class ScanMatcher {
  public:
   /// `swap_source_and_target` (may be empty): the registration's swapSourceAndTarget().
-  /// `contour` (may be null): the contour stage whose status, reason, covariance and
-  /// degeneracy each MatchResult reports.
+  /// `contour` (may be null): the contour stage whose status, reason and degeneracy each
+  /// MatchResult reports, and its covariance and pinned part when it is `registration` itself.
   ScanMatcher(std::string name, Registration::Ptr registration, bool wants_beam_order,
               std::function<void()> swap_source_and_target = {},
               const ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> *contour = nullptr);
