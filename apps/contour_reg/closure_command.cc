@@ -53,7 +53,7 @@ int runClosure(const ClosureOptions &options) {
   if (!options.triangles_csv.empty()) {
     csv = std::fopen(options.triangles_csv.c_str(), "w");
     if (!csv) throw std::runtime_error("cannot write " + options.triangles_csv);
-    std::fprintf(csv, "method,k,closed,error_x_m,error_y_m,error_yaw_rad,nees,nees_translation,nees_yaw\n");
+    std::fprintf(csv, "method,k,error_x_m,error_y_m,error_yaw_rad,nees,nees_translation,nees_yaw\n");
   }
   std::printf(
       "| method | triangles closed | gross closures (> 25 cm or 5 deg) | mean NEES | NEES > %.2f (outside the 99 %% "
@@ -99,8 +99,8 @@ int runClosure(const ClosureOptions &options) {
         outside_yaw += yaw > 6.63;                  // 1 degree of freedom
       }
       if (csv)
-        std::fprintf(csv, "%s,%zu,1,%.5f,%.5f,%.6f,%.4g,%.4g,%.4g\n", name.c_str(), k, closure.error(0),
-                     closure.error(1), closure.error(2), covariance ? closure.nees : 0.0, translation, yaw);
+        std::fprintf(csv, "%s,%zu,%.5f,%.5f,%.6f,%.4g,%.4g,%.4g\n", name.c_str(), k, closure.error(0), closure.error(1),
+                     closure.error(2), covariance ? closure.nees : 0.0, translation, yaw);
     }
     progress.finish();
     const auto percent = [&](std::size_t count) {
