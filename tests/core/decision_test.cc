@@ -5,6 +5,7 @@
 
 #include "contour_reg/core/registration.h"
 #include "contour_reg/core/transform_estimation.h"
+#include "decision/checks.h"
 #include "scenes.h"
 
 namespace contour_reg {
@@ -16,11 +17,11 @@ ContourFeatures featuresFrom(const simulation::World &world, const Eigen::Isomet
 
 RegistrationResult registerPair(const simulation::World &world, const Eigen::Isometry2d &target_pose,
                                 const Eigen::Isometry2d &source_pose, const RegistrationParams &params = {},
-                                const simulation::World *source_world = nullptr) {
+                                const simulation::World *source_world = nullptr, const decision::Checks &checks = {}) {
   const ContourFeatures target = featuresFrom(world, target_pose, 1);
   const ContourFeatures source = featuresFrom(source_world ? *source_world : world, source_pose, 2);
   std::mt19937 rng(3);
-  return registerContours(source, target, params, rng);
+  return decision::registerContoursWith(source, target, params, checks, rng);
 }
 
 Eigen::Vector3d errorOf(const RegistrationResult &r, const Eigen::Isometry2d &target_pose,
@@ -173,9 +174,10 @@ TEST(Decision, TheResultNamesTheBestRejectedMotion) {
   // A corner motion declined for its overlap alone, with the contours' hypotheses off, is
   // scored all the same.
   const simulation::World room = simulation::makeFurnishedRoom();
-  RegistrationParams strict = withoutContourHypotheses();
+  decision::Checks strict;
   strict.corner_min_overlap = strict.two_inlier_min_overlap = 0.999;
-  const RegistrationResult declined = registerPair(room, test::pose2d(0, 0, 10), test::pose2d(0.3, 0.1, 12), strict);
+  const RegistrationResult declined = registerPair(room, test::pose2d(0, 0, 10), test::pose2d(0.3, 0.1, 12),
+                                                   withoutContourHypotheses(), nullptr, strict);
   ASSERT_FALSE(declined.converged);
   ASSERT_TRUE(declined.rejected.has_value());
   EXPECT_GT(declined.rejected->overlap, 0.5);
@@ -225,9 +227,9 @@ TEST(Decision, TwoCornersStandOnlyWithALargeOverlap) {
   ASSERT_TRUE(two.converged) << two.reason;
   EXPECT_FALSE(two.from_local_fallback);
 
-  RegistrationParams strict = withoutContourHypotheses();
+  decision::Checks strict;
   strict.two_inlier_min_overlap = 0.95;
-  const RegistrationResult declined = registerPair(square, target, source, strict);
+  const RegistrationResult declined = registerPair(square, target, source, withoutContourHypotheses(), nullptr, strict);
   EXPECT_FALSE(declined.converged);
   EXPECT_EQ(declined.status, RegistrationStatus::kLowOverlap) << declined.reason;
   EXPECT_NE(declined.reason.find("overlap only 8"), std::string::npos) << declined.reason;
@@ -260,9 +262,10 @@ TEST(Decision, TheCornersDeclinedMotionNamesTheJudgesVerdict) {
 
 TEST(Decision, InliersCloserThanTheirMinimumSpreadAreDegenerate) {
   const simulation::World room = simulation::makeFurnishedRoom();
-  RegistrationParams params = withoutContourHypotheses();
-  params.min_inlier_spread = 100.0;  // m, more than any two corners of the room lie apart
-  const RegistrationResult r = registerPair(room, test::pose2d(0, 0, 10), test::pose2d(0.3, 0.1, 12), params);
+  decision::Checks checks;
+  checks.min_inlier_spread = 100.0;  // m, more than any two corners of the room lie apart
+  const RegistrationResult r = registerPair(room, test::pose2d(0, 0, 10), test::pose2d(0.3, 0.1, 12),
+                                            withoutContourHypotheses(), nullptr, checks);
   EXPECT_FALSE(r.converged);
   EXPECT_EQ(r.status, RegistrationStatus::kDegenerate) << r.reason;
 }

@@ -12,6 +12,7 @@
 #include "contour_reg/core/transform_estimation.h"
 #include "contour_reg/simulation/office.h"
 #include "contour_reg/simulation/simulated_run.h"
+#include "decision/checks.h"
 #include "scenes.h"
 
 namespace contour_reg {
@@ -29,9 +30,10 @@ RegistrationResult registerWithoutCorners(const ContourFeatures &source, const C
                                           bool direction_hypotheses) {
   RegistrationParams params;
   params.min_special_points = 1 << 20;
-  params.direction_hypotheses = direction_hypotheses;
+  decision::Checks checks;
+  checks.direction_hypotheses = direction_hypotheses;
   std::mt19937 rng(5);
-  return registerContours(source, target, params, rng);
+  return decision::registerContoursWith(source, target, params, checks, rng);
 }
 
 TEST(DirectionHistogram, RectangularRoomPutsItsContourAtFourDirections) {
@@ -183,19 +185,30 @@ simulation::World corridorWithRecesses(double depth, double door, double period)
   return corridor;
 }
 
-// Registration settings without the checks of motions of few corners.
-RegistrationParams withoutCornerChecks() {
+// The settings and the judge's checks (decision/checks.h) a test registers with.
+struct Settings {
   RegistrationParams params;
-  params.probe_max_inliers = 0;
-  params.guess_check_max_inliers = 0;
-  params.corner_min_overlap = 0.0;
-  return params;
+  decision::Checks checks;
+};
+
+// Without the checks of motions of few corners.
+Settings withoutCornerChecks() {
+  Settings settings;
+  settings.checks.probe_max_inliers = 0;
+  settings.checks.guess_check_max_inliers = 0;
+  settings.checks.corner_min_overlap = 0.0;
+  return settings;
+}
+
+RegistrationResult registerSeeded(const ContourFeatures &source, const ContourFeatures &target,
+                                  const Settings &settings) {
+  std::mt19937 rng(5);
+  return decision::registerContoursWith(source, target, settings.params, settings.checks, rng);
 }
 
 RegistrationResult registerSeeded(const ContourFeatures &source, const ContourFeatures &target,
                                   const RegistrationParams &params) {
-  std::mt19937 rng(5);
-  return registerContours(source, target, params, rng);
+  return registerSeeded(source, target, Settings{params, decision::Checks{}});
 }
 
 TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
@@ -205,8 +218,8 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   const simulation::World corridor = corridorWithRecesses(0.25, 0.6, 4.0);
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8, 0.02);
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.8, 0.05, 2), 9, 0.02);
-  RegistrationParams unrefined = withoutCornerChecks();  // the corners' motion, unjudged
-  unrefined.refinement.enabled = false;
+  Settings unrefined = withoutCornerChecks();  // the corners' motion, unjudged
+  unrefined.params.refinement.enabled = false;
   const RegistrationResult corners_alone = registerSeeded(source, target, unrefined);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
   ASSERT_EQ(corners_alone.inliers.size(), 3u);
@@ -218,16 +231,16 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
   EXPECT_NE(by_hypotheses.reason.find("3 special points, but they put only"), std::string::npos)
       << by_hypotheses.reason;
 
-  RegistrationParams probed = withoutCornerChecks();  // the probe alone
-  probed.probe_max_inliers = 3;
+  Settings probed = withoutCornerChecks();  // the probe alone
+  probed.checks.probe_max_inliers = 3;
   const RegistrationResult by_probe = registerSeeded(source, target, probed);
   EXPECT_FALSE(by_probe.converged) << by_probe.transform;
   EXPECT_NE(by_probe.reason.find("3 special points, and the contours leave a direction weakly constrained"),
             std::string::npos)
       << by_probe.reason;
 
-  RegistrationParams overlapping = withoutCornerChecks();  // the overlap alone
-  overlapping.corner_min_overlap = 0.3;
+  Settings overlapping = withoutCornerChecks();  // the overlap alone
+  overlapping.checks.corner_min_overlap = 0.3;
   const RegistrationResult by_overlap = registerSeeded(source, target, overlapping);
   EXPECT_FALSE(by_overlap.converged) << by_overlap.transform;
   EXPECT_NE(by_overlap.reason.find("3 special points agree, but the contours overlap only"), std::string::npos)
@@ -237,9 +250,9 @@ TEST(CornerProbe, AMotionOfThreeCornersTheContoursLeaveFlatIsDeclined) {
 
   // Without the local fallback after them, each decline keeps the verdict of the check that
   // made it: a distinct motion fits as well, a direction is left free, too little overlaps.
-  for (RegistrationParams *params : {&probed, &overlapping}) params->local_fallback_min_overlap = 0.0;
-  RegistrationParams hypotheses_alone = withoutCornerChecks();
-  hypotheses_alone.local_fallback_min_overlap = 0.0;
+  for (Settings *settings : {&probed, &overlapping}) settings->params.local_fallback_min_overlap = 0.0;
+  Settings hypotheses_alone = withoutCornerChecks();
+  hypotheses_alone.params.local_fallback_min_overlap = 0.0;
   EXPECT_EQ(registerSeeded(source, target, hypotheses_alone).status, RegistrationStatus::kAmbiguous);
   EXPECT_EQ(registerSeeded(source, target, probed).status, RegistrationStatus::kUnconstrained);
   EXPECT_EQ(registerSeeded(source, target, overlapping).status, RegistrationStatus::kLowOverlap);
@@ -252,8 +265,8 @@ TEST(CornerProbe, AMotionOfThreeCornersOnePeriodOffAlongARowOfDoorsIsAmbiguous) 
   const simulation::World corridor = corridorWithRecesses(0.2, 0.9, 3.0);
   const ContourFeatures target = featuresFrom(corridor, test::pose2d(0, 0, 0), 8);
   const ContourFeatures source = featuresFrom(corridor, test::pose2d(0.5, 0.05, 2), 9);
-  RegistrationParams unjudged = withoutCornerChecks();  // the corners' motion, the free space not weighed
-  unjudged.free_space.enabled = false;
+  Settings unjudged = withoutCornerChecks();  // the corners' motion, the free space not weighed
+  unjudged.params.free_space.enabled = false;
   const RegistrationResult corners_alone = registerSeeded(source, target, unjudged);
   ASSERT_TRUE(corners_alone.converged) << corners_alone.reason;
   ASSERT_EQ(corners_alone.inliers.size(), 3u);

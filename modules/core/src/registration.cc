@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "decision/checks.h"
 #include "decision/generate.h"
 #include "decision/judge.h"
 #include "decision/refine.h"
@@ -72,9 +73,7 @@ double spread(const Points2D &points) {
 
 }  // namespace
 
-bool RegistrationParams::validate(std::string *why) const {
-  if (!correspondence.validate(why) || !ransac.validate(why) || !refinement.validate(why) || !free_space.validate(why))
-    return false;
+bool decision::Checks::validate(std::string *why) const {
   if (!(local_fallback_max_distance > 0.0)) {
     if (why) *why = "local_fallback_max_distance must be > 0";
     return false;
@@ -83,12 +82,18 @@ bool RegistrationParams::validate(std::string *why) const {
     if (why) *why = "corner_min_overlap must be in [0, 1]";
     return false;
   }
-  if (!(probe_distance >= 0.0)) {
-    if (why) *why = "probe_distance must be >= 0";
-    return false;
-  }
   if (probe_max_inliers < 0 || guess_check_max_inliers < 0) {
     if (why) *why = "probe_max_inliers and guess_check_max_inliers must be >= 0";
+    return false;
+  }
+  return true;
+}
+
+bool RegistrationParams::validate(std::string *why) const {
+  if (!correspondence.validate(why) || !ransac.validate(why) || !refinement.validate(why) || !free_space.validate(why))
+    return false;
+  if (!(probe_distance >= 0.0)) {
+    if (why) *why = "probe_distance must be >= 0";
     return false;
   }
   if (min_special_points < 2 || min_inliers < 2) {
@@ -152,12 +157,13 @@ void reset(RegistrationResult &result) {
 }
 
 void registerByCorners(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
-                       std::mt19937 &rng, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
-                       RegistrationResult &result) {
+                       const decision::Checks &checks, std::mt19937 &rng, const Eigen::Matrix3d *guess,
+                       RegistrationBuffers &buffers, RegistrationResult &result) {
   reset(result);
   if (guess) result.transform = *guess;
   std::string why;
-  if (!params.validate(&why)) return fail(result, RegistrationStatus::kInvalidParameters, why);
+  if (!params.validate(&why) || !checks.validate(&why))
+    return fail(result, RegistrationStatus::kInvalidParameters, why);
   const auto &src = source.special_points, &dst = target.special_points;
   result.source_points = src.size();
   result.target_points = dst.size();
@@ -210,13 +216,13 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
       inlier_sources.push_back(p[i]);
   // Support must exceed the minimal sample, which any model fits exactly.
   const std::size_t min_inliers = std::max<std::size_t>(params.min_inliers, sample + 1);
-  const bool verify_two = params.two_inlier_min_overlap > 0.0 && params.refinement.enabled &&
+  const bool verify_two = checks.two_inlier_min_overlap > 0.0 && params.refinement.enabled &&
                           params.ransac.model == TransformModel::kRigid && inlier_sources.size() == 2;
   if (!found.found || (inlier_sources.size() < min_inliers && !verify_two))
     return fail(result, RegistrationStatus::kTooFewInliers,
                 "too few inliers: " + std::to_string(inlier_sources.size()) + " of " +
                     std::to_string(result.candidates.size()) + " pairs, need " + std::to_string(min_inliers));
-  if (spread(inlier_sources) < params.min_inlier_spread)
+  if (spread(inlier_sources) < checks.min_inlier_spread)
     return fail(result, RegistrationStatus::kDegenerate, "inlier special points lie too close together");
   if (params.ransac.model == TransformModel::kAffine) {
     Eigen::Matrix3d check;
@@ -255,8 +261,8 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     // The contours must confirm what the corners agree on; a motion they do not confirm goes
     // back to the guess, and the contours' own hypotheses decide.
     std::string against;
-    const RegistrationStatus verdict =
-        decision::judgeCornerMotion(judged, corners, params, guess, result.candidates, buffers, scorer, against);
+    const RegistrationStatus verdict = decision::judgeCornerMotion(judged, corners, params, checks, guess,
+                                                                   result.candidates, buffers, scorer, against);
     if (verdict != RegistrationStatus::kConverged) {
       result.rejected = rejected(judged.best, scorer);
       if (verdict == RegistrationStatus::kAmbiguous) nameAlternatives(result, *result.rejected, judged, scorer);
@@ -272,11 +278,12 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
 
 // Few corners: the contours' own hypotheses, refined and judged.
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
-                      const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, RegistrationResult &result) {
+                      const decision::Checks &checks, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
+                      RegistrationResult &result) {
   result.alternatives.clear();  // the fallback's verdict replaces the corners'
-  const RefinementParams wide = decision::widened(params);
+  const RefinementParams wide = decision::widened(params, checks);
   std::vector<RefinementStart> &starts = buffers.starts;
-  decision::contourHypotheses(source, target, params, guess, result.candidates, wide, starts);
+  decision::contourHypotheses(source, target, params, checks, guess, result.candidates, wide, starts);
   decision::Scorer scorer(source, target, params.free_space, buffers);
   decision::Judged judged =
       decision::chooseBest(decision::refineHypotheses(source, target, starts, buffers), guess, scorer);
@@ -313,6 +320,25 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
 
 }  // namespace
 
+void decision::registerContoursWith(const ContourFeatures &source, const ContourFeatures &target,
+                                    const RegistrationParams &params, const Checks &checks, std::mt19937 &rng,
+                                    const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
+                                    RegistrationResult &result) {
+  registerByCorners(source, target, params, checks, rng, guess, buffers, result);
+  if (!result.converged && isUndecided(result.status) && params.local_fallback_min_overlap > 0.0 &&
+      params.refinement.enabled && !source.contours.empty() && !target.contours.empty())
+    tryLocalFallback(source, target, params, checks, guess, buffers, result);
+}
+
+RegistrationResult decision::registerContoursWith(const ContourFeatures &source, const ContourFeatures &target,
+                                                  const RegistrationParams &params, const Checks &checks,
+                                                  std::mt19937 &rng, const Eigen::Matrix3d *guess) {
+  RegistrationBuffers buffers;
+  RegistrationResult result;
+  registerContoursWith(source, target, params, checks, rng, guess, buffers, result);
+  return result;
+}
+
 RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
                                     const RegistrationParams &params, std::mt19937 &rng, const Eigen::Matrix3d *guess) {
   RegistrationBuffers buffers;
@@ -332,10 +358,7 @@ RegistrationResult registerContours(const ContourFeatures &source, const Contour
 void registerContours(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                       std::mt19937 &rng, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
                       RegistrationResult &result) {
-  registerByCorners(source, target, params, rng, guess, buffers, result);
-  if (!result.converged && isUndecided(result.status) && params.local_fallback_min_overlap > 0.0 &&
-      params.refinement.enabled && !source.contours.empty() && !target.contours.empty())
-    tryLocalFallback(source, target, params, guess, buffers, result);
+  decision::registerContoursWith(source, target, params, decision::Checks{}, rng, guess, buffers, result);
 }
 
 }  // namespace contour_reg

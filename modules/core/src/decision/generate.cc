@@ -14,9 +14,9 @@ constexpr std::size_t kMaxPairHypotheses = 8;
 
 }  // namespace
 
-RefinementParams widened(const RegistrationParams &params) {
+RefinementParams widened(const RegistrationParams &params, const Checks &checks) {
   RefinementParams wide = params.refinement;
-  wide.max_distance = std::max(wide.max_distance, params.local_fallback_max_distance);
+  wide.max_distance = std::max(wide.max_distance, checks.local_fallback_max_distance);
   return wide;
 }
 
@@ -27,7 +27,7 @@ void cornerHypotheses(const Eigen::Matrix3d &coarse, const std::vector<Eigen::Ma
 }
 
 void contourHypotheses(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
-                       const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
+                       const Checks &checks, const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
                        const RefinementParams &wide, std::vector<RefinementStart> &starts) {
   starts.assign(1, {guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), &wide});
   // A single pair fixes the motion only with the rotation-invariant fragment distance, whose
@@ -44,7 +44,7 @@ void contourHypotheses(const ContourFeatures &source, const ContourFeatures &tar
       starts.push_back({rigidTransform(moved.x(), moved.y(), c.rotation), &params.refinement});
     }
   }
-  if (params.direction_hypotheses)
+  if (checks.direction_hypotheses)
     for (const Eigen::Matrix3d &motion : directionHypotheses(source, target, DirectionHistogramParams{}, guess))
       starts.push_back({motion, &params.refinement});
 }

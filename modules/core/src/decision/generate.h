@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include "checks.h"
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/correspondence.h"
 #include "contour_reg/core/refinement.h"
@@ -24,18 +25,18 @@
 namespace contour_reg::decision {
 
 /// The refinement settings for a start that may be far off (the guess): pairing begins at
-/// local_fallback_max_distance.
-RefinementParams widened(const RegistrationParams &params);
+/// Checks::local_fallback_max_distance.
+RefinementParams widened(const RegistrationParams &params, const Checks &checks);
 
 /// RANSAC's best motion `coarse` and its `rivals`, each refined with `params`, into `starts`.
 void cornerHypotheses(const Eigen::Matrix3d &coarse, const std::vector<Eigen::Matrix3d> &rivals,
                       const RefinementParams &params, std::vector<RefinementStart> &starts);
 
 /// The contours' hypotheses into `starts`. `pairs` are the candidate pairs of special points
-/// already found (empty: they are found here); `wide` (widened(params)) refines the guess and
-/// must outlive the starts.
+/// already found (empty: they are found here); `wide` (widened(params, checks)) refines the
+/// guess and must outlive the starts.
 void contourHypotheses(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
-                       const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
+                       const Checks &checks, const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
                        const RefinementParams &wide, std::vector<RefinementStart> &starts);
 
 }  // namespace contour_reg::decision

@@ -92,8 +92,8 @@ bool pinnedAfterPromotions(Judged &found, const RegistrationParams &params, Regi
 // refined from the wider pairing distance: they agree, or that answer scores clearly worse.
 // A few corners along repeated structure (a door every few metres) can match one period off,
 // where the contours fit about as well as at the true motion.
-bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
-                        RegistrationBuffers &buffers, Scorer &scorer) {
+bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const Checks &checks,
+                        const Eigen::Matrix3d *guess, RegistrationBuffers &buffers, Scorer &scorer) {
   // A refinement from the guess that has come a quarter of the distinct-motion distance near
   // the best agrees with it: stop there. Where it leads shows on samples twice as sparse, as in
   // the screening of hypotheses; one that leads elsewhere goes on from there on all samples, so
@@ -101,8 +101,9 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const E
   const Eigen::Matrix3d &best = found.best.refined.transform;
   const auto near_best = [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; };
   samplesOf(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples, buffers.sparse_sampled);
-  const RefinementResult quick = buffers.refiner.refine(
-      buffers.sparse_samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(), widened(params), near_best);
+  const RefinementResult quick =
+      buffers.refiner.refine(buffers.sparse_samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(),
+                             widened(params, checks), near_best);
   if (motionDistance(best, quick.transform) <= kDistinctMotions) return true;
   RefinementParams polish = params.refinement;  // the sparse refinement ended at the smallest pairing distance
   polish.max_distance = polish.min_distance;
@@ -144,12 +145,13 @@ bool refuted(Judged &found, Scorer &scorer, std::string &what) {
 //   repeats along the motion between them, which the free space contradicts; below it, a few
 //   corners (a cupboard, the posts of a fence) may agree on a motion the rest of the scan
 //   does not share, and the walls' own motion can explain more.
-bool standsAgainstContours(Judged &found, const RegistrationParams &params, const Eigen::Matrix3d *guess,
-                           const std::vector<Correspondence> &pairs, RegistrationBuffers &buffers, Scorer &scorer) {
+bool standsAgainstContours(Judged &found, const RegistrationParams &params, const Checks &checks,
+                           const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
+                           RegistrationBuffers &buffers, Scorer &scorer) {
   if (found.best.refined.overlap >= kMostOfTheContour && !contradicted(found, scorer)) return true;
   const double best = scorer.score(found.best);
-  const RefinementParams wide = widened(params);
-  contourHypotheses(scorer.source(), scorer.target(), params, guess, pairs, wide, buffers.starts);
+  const RefinementParams wide = widened(params, checks);
+  contourHypotheses(scorer.source(), scorer.target(), params, checks, guess, pairs, wide, buffers.starts);
   for (const RefinementResult &rival : refineHypotheses(scorer.source(), scorer.target(), buffers.starts, buffers)) {
     if (motionDistance(found.best.refined.transform, rival.transform) <= kDistinctMotions) continue;
     const double score = scorer.score(rival);
@@ -234,8 +236,9 @@ Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Mat
 }
 
 RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
-                                     const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
-                                     RegistrationBuffers &buffers, Scorer &scorer, std::string &against) {
+                                     const Checks &checks, const Eigen::Matrix3d *guess,
+                                     const std::vector<Correspondence> &pairs, RegistrationBuffers &buffers,
+                                     Scorer &scorer, std::string &against) {
   const RefinementResult &refined = found.best.refined;
   const auto verdict = [&](RegistrationStatus status, std::string what) {
     against = std::move(what);
@@ -244,20 +247,20 @@ RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const R
   if (found.ambiguous)
     return verdict(RegistrationStatus::kAmbiguous, ", but the contours fit a distinct motion of other corners as well");
   // Two corners need a large overlap, more a modest one.
-  const double min_overlap = corners == 2 ? params.two_inlier_min_overlap : params.corner_min_overlap;
+  const double min_overlap = corners == 2 ? checks.two_inlier_min_overlap : checks.corner_min_overlap;
   if (refined.overlap < min_overlap)
     return verdict(RegistrationStatus::kLowOverlap, " agree, but the contours overlap only " +
                                                         std::to_string(static_cast<int>(100 * refined.overlap)) +
                                                         " % after alignment");
   // A few corners, often along one wall, pin the motion no better than they are spread:
   // the contours must pin it too.
-  if (corners <= static_cast<std::size_t>(params.probe_max_inliers) &&
+  if (corners <= static_cast<std::size_t>(checks.probe_max_inliers) &&
       !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
     return verdict(RegistrationStatus::kUnconstrained, ", and the contours leave a direction weakly constrained");
-  if (corners <= static_cast<std::size_t>(params.guess_check_max_inliers) &&
-      !standsAgainstGuess(found, params, guess, buffers, scorer))
+  if (corners <= static_cast<std::size_t>(checks.guess_check_max_inliers) &&
+      !standsAgainstGuess(found, params, checks, guess, buffers, scorer))
     return verdict(RegistrationStatus::kAmbiguous, ", and the contours fit a distinct motion from the guess as well");
-  if (!standsAgainstContours(found, params, guess, pairs, buffers, scorer))
+  if (!standsAgainstContours(found, params, checks, guess, pairs, buffers, scorer))
     return verdict(RegistrationStatus::kAmbiguous,
                    contradicted(found, scorer)
                        ? ", but the other scan saw through part of it and the contours fit a distinct motion as well"

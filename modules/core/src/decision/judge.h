@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include "checks.h"
 #include "contour_reg/core/registration.h"
 #include "score.h"
 
@@ -61,8 +62,9 @@ Judged chooseBest(const std::vector<RefinementResult> &refined, const Eigen::Mat
 /// `pairs` are the candidate pairs of special points, from which the contours' hypotheses are
 /// drawn when the free space contradicts the motion.
 RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const RegistrationParams &params,
-                                     const Eigen::Matrix3d *guess, const std::vector<Correspondence> &pairs,
-                                     RegistrationBuffers &buffers, Scorer &scorer, std::string &against);
+                                     const Checks &checks, const Eigen::Matrix3d *guess,
+                                     const std::vector<Correspondence> &pairs, RegistrationBuffers &buffers,
+                                     Scorer &scorer, std::string &against);
 
 /// The verdict on the contours' own best motion when the corners did not decide: converged,
 /// low overlap, unconstrained, ambiguous or contradicted, with the reason in `why`.

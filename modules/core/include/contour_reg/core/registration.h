@@ -42,14 +42,6 @@ struct RegistrationParams {
   FreeSpaceParams free_space;
   int min_special_points = 2;  ///< per scan
   int min_inliers = 3;         ///< supporting pairs of distinct special points
-  /// Two inliers are accepted when, after refinement, at least this fraction of the
-  /// source contour lies on the target contour (0 disables).
-  double two_inlier_min_overlap = 0.6;
-  /// With the refinement on, a motion of more inliers must put at least this fraction of the
-  /// source contour on the target contour, or it goes to the local fallback: corners paired
-  /// wrongly along cluttered or noisy walls can agree on a motion the contours refute (0 disables).
-  double corner_min_overlap = 0.3;
-  double min_inlier_spread = 0.3;  ///< m, the inlier special points must span at least this
   /// With a guess: pairs whose target lies farther than this from the guessed position
   /// of their source point, or whose rotation disagrees with the guess by more than
   /// guess_max_rotation, are dropped. <= 0 ignores the guess for pairing.
@@ -63,29 +55,13 @@ struct RegistrationParams {
   /// every direction (probe_distance) and no distinct motion fits as well. <= 0 disables it:
   /// such pairs then fail. The result says when it came from here (from_local_fallback).
   double local_fallback_min_overlap = 0.4;
-  /// m, the refinement of the guess in the local fallback starts pairing points this far apart.
-  double local_fallback_max_distance = 1.0;
-  /// Motions from the contours' direction and wall-offset histograms join the fallback's starts
-  /// (directionHypotheses with the default DirectionHistogramParams: its bins and peaks are
-  /// the generator's own, not a user's setting).
-  bool direction_hypotheses = true;
-  /// m, the probe: the local fallback's motion, refined again from this far off along its
-  /// weakest direction (RefinementResult::weakest_direction), both ways, must settle back or
-  /// fit worse where it settles. A room or a corridor with a closed end passes; a bare
-  /// corridor, a circle seen from inside or a corridor whose axis only a small stub
-  /// constrains stay "not converged". 0 skips this check.
+  /// m, the probe: the local fallback's motion, and a motion only a few corners agree on,
+  /// refined again from this far off along its weakest direction
+  /// (RefinementResult::weakest_direction), both ways, must settle back or fit worse where it
+  /// settles. A room or a corridor with a closed end passes; a bare corridor, a circle seen
+  /// from inside or a corridor whose axis only a small stub constrains stay "not converged".
+  /// 0 skips this check.
   double probe_distance = 0.2;
-  /// A motion the corners decide with at most this many inlier special points must pass the
-  /// same probe (when it is on); one that does not goes to the local fallback. Three corners
-  /// along one wall of a corridor fix its axis only as well as they are spread.
-  int probe_max_inliers = 3;
-  /// A motion the corners decide with at most this many inlier special points must agree
-  /// with the contours' own answer, the guess (identity without one) refined from
-  /// local_fallback_max_distance, or score clearly better (by more than the tie of 0.05, the
-  /// score being overlap less the contour share in free space); one that does not goes to the
-  /// local fallback. Corners along repeated structure (a door every few
-  /// metres) or wrongly paired in clutter can agree on a wrong motion. 0 skips this check.
-  int guess_check_max_inliers = 5;
 
   bool validate(std::string *why = nullptr) const;
 };
@@ -218,11 +194,12 @@ struct RegistrationBuffers {
   } repetition;
 };
 
-/// Registers `source` onto `target`. `guess` (source to target), when given, is the
-/// fallback transform and the start of the local fallback; with guess_max_distance > 0 it gates the pairs, and with the
-/// rotation-dependent FragmentDistance::kReal the source fragments are turned by its yaw
-/// before comparing. With the affine model, RANSAC fits the paper's affine map; the
-/// refinement, when enabled, then refines its rigid part and that is reported.
+/// Registers `source` onto `target`. How the judge decides is fixed by the method
+/// (modules/core/src/decision/checks.h); `params` say what the scans and the robot are. `guess` (source to target),
+/// when given, is the fallback transform and the start of the local fallback; with guess_max_distance > 0 it gates the
+/// pairs, and with the rotation-dependent FragmentDistance::kReal the source fragments are turned by its yaw before
+/// comparing. With the affine model, RANSAC fits the paper's affine map; the refinement, when enabled, then refines its
+/// rigid part and that is reported.
 RegistrationResult registerContours(const ContourFeatures &source, const ContourFeatures &target,
                                     const RegistrationParams &params, std::mt19937 &rng,
                                     const Eigen::Matrix3d *guess = nullptr);
