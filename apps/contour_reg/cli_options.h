@@ -205,6 +205,18 @@ inline void addWheelFusionOptions(CLI::App &command, bool &fuse, odometry::Wheel
       ->type_name("A1 A2 A3 A4");
 }
 
+/// A converged motion this far from a reference, or a triangle of registrations this far from
+/// closing, is a gross error (m, deg): not noise a covariance should cover.
+constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;
+
+/// Whether motions `metres` and `degrees` apart are grossly apart.
+inline bool isGross(double metres, double degrees) { return metres > kGrossMetres || degrees > kGrossDegrees; }
+
+/// Whether a departure from a motion (x, y in m, yaw in rad) is gross.
+inline bool isGross(const io::Pose2D &departure) {
+  return isGross(std::hypot(departure.x, departure.y), std::abs(departure.yaw) * 180 / M_PI);
+}
+
 /// A check that accepts the method names of odometry::methodNames().
 inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames()); }
 

@@ -24,10 +24,6 @@ namespace contour_reg::cli {
 
 namespace {
 
-// A closure this far from the identity means one of its three registrations is grossly wrong,
-// not that its covariance is too small (m, deg; as relations' gross errors).
-constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;
-
 struct ClosureOptions {
   std::string input;
   std::vector<std::string> methods = {"contour"};
@@ -46,10 +42,6 @@ std::optional<io::Pose2D> logMotion(const io::ScanLog &log, std::size_t k) {
   if (!a || !b) return std::nullopt;
   const io::Pose2D motion = io::between(*a, *b);
   return log.laser_pose ? io::laserMotion(motion, *log.laser_pose) : motion;
-}
-
-bool isGross(const io::Pose2D &departure) {
-  return std::hypot(departure.x, departure.y) > kGrossMetres || std::abs(departure.yaw) * 180 / M_PI > kGrossDegrees;
 }
 
 int runClosure(const ClosureOptions &options) {

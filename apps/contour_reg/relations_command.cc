@@ -26,9 +26,6 @@ namespace contour_reg::cli {
 
 namespace {
 
-// A converged estimate this far from the reference is a gross error (m, deg).
-constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;
-
 struct RelationsOptions {
   std::string input, relations;
   std::vector<std::string> methods = {"contour", "contour+icp", "icp", "icp-pl", "ndt2d"};
@@ -278,7 +275,7 @@ int runRelations(const RelationsOptions &options) {
       }
       wrong += match.converged && !ok;
       answered.push_back({match.converged, match.converged && !ok, t});
-      const bool gross_error = match.converged && (et > kGrossMetres || er > kGrossDegrees);
+      const bool gross_error = match.converged && isGross(et, er);
       // Each motion's evidence in the scans themselves, in the laser's frame like the scans:
       // for the CSV and for the gross errors.
       double est_free_space = 0.0, ref_free_space = 0.0;

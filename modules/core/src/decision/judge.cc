@@ -202,6 +202,7 @@ void Judged::promoteRival() {
   rival.reset();
   consider(demoted.refined, demoted.score);
   ambiguous = rival && rival->score > best.score - kScoreTie;
+  ties.clear();  // they tied with the motion demoted
 }
 
 void Judged::consider(const RefinementResult &motion, double score) {
@@ -307,7 +308,6 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
     if (!standsAgainstRepetition(found, params, buffers, scorer)) {
       if (promoted < kMaxPromotions && found.rival && found.rival->score > scorer.score(found.best) + kScoreTie) {
         found.promoteRival();
-        found.ties.clear();  // they tied with the motion demoted
         continue;
       }
       why = "refined on the contours, a motion a period along repeated structure fits what both scans saw as well";

@@ -49,7 +49,7 @@ struct Judged {
   /// Keeps `motion`, scored `score`, as the rival when it is distinct from the best and scores higher.
   void consider(const RefinementResult &motion, double score);
   /// Makes the rival (scored) the best and the best a rival; ambiguous when that rival scores
-  /// within the tie of the new best.
+  /// within the tie of the new best. The ties, found against the motion demoted, are dropped.
   void promoteRival();
 };
 
