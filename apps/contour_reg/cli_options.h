@@ -52,7 +52,7 @@ inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &las
       ->type_name("X Y YAW");
 }
 
-/// --max-range, --scan-topic, --odom-topic, --no-wheel-odometry, --scan-period, --laser-pose.
+/// --max-range, --scan-topic, --odom-topic, --no-wheel-odometry, --scan-period, --beam-step, --laser-pose.
 inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m, > 0)")
       ->capture_default_str()
@@ -68,6 +68,11 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
                   "from the stamp (s, >= 0; 0: none)")
       ->capture_default_str()
       ->check(nonNegative());
+  command
+      .add_option("--beam-step", options.beam_step,
+                  "Keep every N-th beam from the first: the scans of a LIDAR with N times the angular step (>= 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000}));
   addLaserPoseOption(command, options.laser_pose, "over what the log says");
 }
 

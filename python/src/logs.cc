@@ -126,9 +126,11 @@ void bindLogs(py::module_ &m) {
   m.def(
       "read_log",
       [](const std::string &path, double max_range, const std::string &scan_topic, const std::string &odom_topic,
-         double scan_period, const py::object &laser_pose, bool wheel_odometry) {
+         double scan_period, const py::object &laser_pose, bool wheel_odometry, long beam_step) {
         if (!(scan_period >= 0.0)) throw py::value_error("scan_period must be >= 0 s");
+        if (beam_step < 1) throw py::value_error("beam_step must be >= 1");
         io::LogReadOptions options;
+        options.beam_step = static_cast<std::size_t>(beam_step);
         options.laser_pose = poseFrom(laser_pose, "laser_pose");
         options.scan_period = scan_period;
         options.max_range = max_range;
@@ -140,12 +142,13 @@ void bindLogs(py::module_ &m) {
       },
       py::arg("path"), py::arg("max_range") = io::LogReadOptions{}.max_range, py::arg("scan_topic") = "",
       py::arg("odom_topic") = "", py::arg("scan_period") = 0.0, py::arg("laser_pose") = py::none(),
-      py::arg("wheel_odometry") = true,
+      py::arg("wheel_odometry") = true, py::arg("beam_step") = 1,
       "Reads a CARMEN log (plain or gzip), a ROS 1 bag or a folder of PCD scans. Readings at or above max_range (m) "
       "are no-return; bags: the LaserScan and Odometry topics ('' : the first); scan_period: s per LIDAR turn for "
       "scans without beam timing (beams in index order from the stamp; 0: none); laser_pose: (x m, y m, yaw rad) "
       "of the laser on the robot, over what the log says; wheel_odometry=False: the scans alone, without the log's "
-      "wheel odometry and poses (as from a LIDAR without wheels). Raises ReadError naming the file "
+      "wheel odometry and poses (as from a LIDAR without wheels); beam_step: keep every beam_step-th beam from the "
+      "first (a LIDAR with that many times the angular step). Raises ReadError naming the file "
       "(and line) when it cannot be used; bad lines it can skip are counted in Log.skipped.");
   m.def(
       "write_carmen", [](const std::string &path, const io::ScanLog &log) { io::writeCarmen(path, log); },

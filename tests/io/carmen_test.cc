@@ -49,6 +49,29 @@ TEST(Carmen, AScanPeriodGivesBeamTiming) {
   EXPECT_DOUBLE_EQ(scan.stamp, 10.0);
 }
 
+// A beam step keeps every n-th beam from the first, as a LIDAR with n times the angular step
+// gives them: 361 beams of 0.5 deg become 181 of 1 deg, beam k the original's beam 2k, and a
+// scan period times the kept beams by their own spacing.
+TEST(Carmen, ABeamStepKeepsEveryNthBeam) {
+  TempDir dir;
+  std::string line = "FLASER 361";
+  for (int k = 0; k < 361; ++k) line += " " + std::to_string(1.0 + 0.01 * k);
+  const auto path = dir.write("a.clf", line + " 0 0 0 0 0 0 10.0 host 10.0\n");
+  LogReadOptions options;
+  options.beam_step = 2;
+  options.scan_period = 0.1;
+  const LaserScan scan = readLog(path, options).entries.at(0).scan;
+  ASSERT_EQ(scan.ranges.size(), 181u);
+  EXPECT_NEAR(scan.angle_min, -M_PI / 2, 1e-12);
+  EXPECT_NEAR(scan.angle_increment, M_PI / 180, 1e-12);
+  EXPECT_NEAR(scan.bearing(180), M_PI / 2, 1e-12);
+  EXPECT_FLOAT_EQ(scan.ranges[1], 1.02f);
+  EXPECT_FLOAT_EQ(scan.ranges[180], 4.6f);
+  EXPECT_NEAR(scan.time_increment, 0.1 / 360.0, 1e-12);
+  options.beam_step = 0;
+  EXPECT_THROW(readLog(path, options), std::invalid_argument);
+}
+
 TEST(Carmen, ReadingsAtMaxRangeAreNoReturn) {
   TempDir dir;
   const ScanLog log = readCarmen(dir.write("a.clf", flaser(4, 81.83, 0, 0, 0, 1.0)));

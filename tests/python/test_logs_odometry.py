@@ -28,6 +28,16 @@ def test_read_log_without_wheel_odometry_gives_the_scans_alone(bundled_log):
     assert cr.odometry(scans_alone).registrations == len(bundled_log) - 1
 
 
+def test_a_beam_step_keeps_every_nth_beam(bundled_log):
+    # 1081 beams of 0.25 deg become 361 of 0.75 deg: beam k is the original's beam 3k.
+    coarse = cr.read_log(str(BUNDLED_LOG), beam_step=3)
+    assert len(coarse[0]) == 361
+    assert coarse[0].angle_increment == pytest.approx(3 * bundled_log[0].angle_increment)
+    np.testing.assert_array_equal(coarse[5].ranges, bundled_log[5].ranges[::3])
+    with pytest.raises(ValueError, match="beam_step"):
+        cr.read_log(str(BUNDLED_LOG), beam_step=0)
+
+
 def test_a_missing_file_raises_with_its_name(tmp_path):
     missing = tmp_path / "no-such-log.clf"
     with pytest.raises(cr.ReadError, match="no-such-log.clf"):

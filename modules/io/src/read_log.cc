@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
 
 #include "contour_reg/io/carmen.h"
 #include "contour_reg/io/pcd_folder.h"
@@ -29,10 +30,22 @@ ScanLog readAny(const std::string &path, const LogReadOptions &options) {
   return readCarmen(path, carmen);
 }
 
+// `scan` with every `step`-th beam, from the first.
+void keepEveryBeam(std::size_t step, LaserScan &scan) {
+  std::size_t kept = 0;
+  for (std::size_t n = 0; n < scan.ranges.size(); n += step) scan.ranges[kept++] = scan.ranges[n];
+  scan.ranges.resize(kept);
+  scan.angle_increment *= static_cast<double>(step);
+  scan.time_increment *= static_cast<double>(step);
+}
+
 }  // namespace
 
 ScanLog readLog(const std::string &path, const LogReadOptions &options) {
+  if (options.beam_step == 0) throw std::invalid_argument("beam_step must be >= 1");
   ScanLog log = readAny(path, options);
+  if (options.beam_step > 1)
+    for (LogEntry &entry : log.entries) keepEveryBeam(options.beam_step, entry.scan);
   if (options.scan_period > 0.0)
     for (LogEntry &entry : log.entries)
       if (entry.scan.time_increment == 0.0)

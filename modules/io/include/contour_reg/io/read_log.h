@@ -23,6 +23,10 @@ struct LogReadOptions {
   /// The laser's pose on the robot (base_link -> laser; x, y in m, yaw in rad), over what the
   /// log says (ScanLog::laser_pose: ROBOTLASER1 lines, a bag's tf).
   std::optional<Pose2D> laser_pose;
+  /// Keeps every beam_step-th beam, from the first: the scans a LIDAR with beam_step times the
+  /// angular step (and time between beams) would give, to study angular resolution on logs
+  /// with finer beams. 1: every beam. Must be >= 1.
+  std::size_t beam_step = 1;
   /// false: the log's wheel odometry (and the poses its scan lines carry) is left out, the
   /// scans read alone, as a LIDAR without wheels gives them.
   bool wheel_odometry = true;
@@ -30,8 +34,8 @@ struct LogReadOptions {
 
 /// Reads `path` with the reader its kind calls for, then gives scans without beam timing
 /// the timing of `scan_period`, the log the mounting `laser_pose` when set, and leaves the
-/// wheel odometry out without `wheel_odometry`. Throws
-/// ReadError naming the file.
+/// wheel odometry out without `wheel_odometry`, and keeps every `beam_step`-th beam. Throws
+/// ReadError naming the file, std::invalid_argument for a beam_step of 0.
 ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
 
 /// The index of the entry whose scan stamp is nearest `stamp` (s); the later one on a tie.
