@@ -33,6 +33,10 @@ void printReadReport(const io::ScanLog &log) {
                  log.report.reordered);
 }
 
+std::string beamsRead(const io::LogReadOptions &read) {
+  return read.beam_step > 1 ? " (one beam in " + std::to_string(read.beam_step) + ")" : "";
+}
+
 void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, const io::LogReadOptions &read) {
   if (guess != "odom") return;
   std::size_t without = 0;

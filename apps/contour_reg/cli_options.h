@@ -228,6 +228,10 @@ inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames(
 /// Prints the reader's warnings (skipped lines, the first few described) to stderr.
 void printReadReport(const io::ScanLog &log);
 
+/// " (one beam in N)" when the log was read with --beam-step N > 1, else "": for the headers of
+/// tables, so that saved output says which scans it measured.
+std::string beamsRead(const io::LogReadOptions &read);
+
 /// The motion over scan k's sweep, by the wheel odometry, as the odometry deskews it: none when
 /// `deskew` is off or the scan carries no beam timing.
 inline SweepMotion sweepToDeskew(const io::ScanLog &log, std::size_t k, bool deskew) {

@@ -55,9 +55,9 @@ int runClosure(const ClosureOptions &options) {
     return 1;
   }
   std::printf(
-      "%s: %zu triangles of scans k, k + 1, k + 2 (k -> k + 2 against k -> k + 1 -> k + 2), zero guess, "
+      "%s%s: %zu triangles of scans k, k + 1, k + 2 (k -> k + 2 against k -> k + 1 -> k + 2), zero guess, "
       "no reference\n\n",
-      options.input.c_str(), triangles);
+      options.input.c_str(), beamsRead(options.read).c_str(), triangles);
   std::FILE *csv = nullptr;
   if (!options.triangles_csv.empty()) {
     csv = std::fopen(options.triangles_csv.c_str(), "w");

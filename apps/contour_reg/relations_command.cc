@@ -201,8 +201,9 @@ int runRelations(const RelationsOptions &options) {
   }
   if (options.limit > 0 && pairs.size() > options.limit) pairs.resize(options.limit);
   const bool robot_frame = options.frame == "robot" && log.laser_pose.has_value();
-  std::printf("%s: %zu %s, zero guess, success = within %.2f m and %.1f deg\n\n", options.input.c_str(), pairs.size(),
-              references.kind.c_str(), options.tolerance, options.tolerance_deg);
+  std::printf("%s%s: %zu %s, zero guess, success = within %.2f m and %.1f deg\n\n", options.input.c_str(),
+              beamsRead(options.read).c_str(), pairs.size(), references.kind.c_str(), options.tolerance,
+              options.tolerance_deg);
   if (references.left_out > 0)
     std::printf("%zu more relations have no scan within %.0f ms of a stamp: left out\n\n", references.left_out,
                 1000 * kStampMatch);

@@ -233,6 +233,12 @@ expect_run(0 relations ${LOG} --gt ${GT} --gt-gap 2 --methods contour)
 expect_match("${LAST_OUT}" "97 pairs of scans 2 apart, referenced by [^\n]*L-hokuyo-2hz.gt.tum")
 expect_match("${LAST_OUT}" "\\| contour \\| 100.0 % \\| 100.0 % \\| 0.0 % \\|")
 
+# Read with one beam in two (0.5 deg instead of 0.25), the same pairs still register, and the
+# header says which scans were measured.
+expect_run(0 relations ${LOG} --gt ${GT} --gt-gap 2 --methods contour --beam-step 2)
+expect_match("${LAST_OUT}" "L-hokuyo-2hz.clf \\(one beam in 2\\): 97 pairs of scans 2 apart")
+expect_match("${LAST_OUT}" "\\| contour \\| 100.0 % \\| 100.0 % \\| 0.0 % \\|")
+
 # relations reports, for each kind of decline, on how many pairs the motion the method declined
 # was right. Without special points (threshold 0.99) every pair goes to the contours' own
 # hypotheses, and an overlap of 100 % is more than any pair gives: both pairs decline the motion
