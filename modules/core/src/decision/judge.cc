@@ -68,6 +68,53 @@ bool settlesBack(Judged &found, double probe, const RefinementParams &params, co
   return true;
 }
 
+// m: the sweep along the weakest direction (unrivalledAlongWeakestDirection) starts a
+// refinement every this far, pairing from half of it beyond the refinement's first pairing
+// distance, so that every offset within its reach lies within pairing distance of a start.
+constexpr double kSweepStep = 0.5;
+
+// Whether no distinct motion along the best's weakest direction, within the scan's reach,
+// scores within the tie of the best. The probes (settlesBack) see the basin of the best alone;
+// along a corridor another optimum metres away can fit as well: the true motion, where the
+// contours' best laid door frames and wall ends on others further along, or a second alias.
+// Refinements start every kSweepStep m along the direction, both ways, from twice that out to
+// the RMS range of the best's paired points (RefinementResult::rms_range): farther, a moved
+// scan shares little of what the other saw. They run on samples twice as sparse, as the
+// screening of hypotheses does; one that settles on a distinct motion scoring within twice the
+// tie of the best (the sparse samples' share may differ by about a tie) is refined in full,
+// and scored.
+bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
+                                     Scorer &scorer) {
+  const RefinementResult &best = found.best.refined;
+  const double best_score = scorer.score(found.best);
+  RefinementParams from_start = params.refinement;
+  from_start.max_distance = params.refinement.max_distance + 0.5 * kSweepStep;
+  RefinementParams polish = params.refinement;  // the sparse refinement ended at the smallest pairing distance
+  polish.max_distance = polish.min_distance;
+  const std::vector<Eigen::Vector2d> &sparse =
+      samplesOf(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples, buffers.sparse_sampled);
+  // A start that has come back near the best leads to the best: stop there.
+  const auto near_best = [&](const Eigen::Matrix3d &m) {
+    return motionDistance(best.transform, m) <= kDistinctMotions / 4;
+  };
+  const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
+  for (double along = 2.0 * kSweepStep; along <= best.rms_range; along += kSweepStep)
+    for (const double sign : {1.0, -1.0}) {
+      const Eigen::Vector3d off = sign * along * best.weakest_direction;
+      const RefinementResult quick =
+          buffers.refiner.refine(sparse, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_start, near_best);
+      if (motionDistance(quick.transform, best.transform) <= kDistinctMotions ||
+          scorer.score(quick) <= best_score - 2.0 * kScoreTie)
+        continue;
+      const RefinementResult r = buffers.refiner.refine(buffers.samples, quick.transform, polish, near_best);
+      if (motionDistance(r.transform, best.transform) <= kDistinctMotions) continue;
+      const double score = scorer.score(r);
+      found.consider(r, score);
+      if (score > best_score - kScoreTie) return false;
+    }
+  return true;
+}
+
 // Whether the best is pinned along its weakest direction (settlesBack). Where a probe settles
 // on a motion that scores clearly better (by more than the tie) along that direction from the
 // best, the refinement of the best had stopped short of it (a slow slide along a corridor):
@@ -311,6 +358,14 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
         continue;
       }
       why = "refined on the contours, a motion a period along repeated structure fits what both scans saw as well";
+      return RegistrationStatus::kAmbiguous;
+    }
+    if (params.probe_distance > 0.0 && !unrivalledAlongWeakestDirection(found, params, buffers, scorer)) {
+      if (promoted < kMaxPromotions && found.rival && found.rival->score > scorer.score(found.best) + kScoreTie) {
+        found.promoteRival();
+        continue;
+      }
+      why = "refined on the contours, a distinct motion along the weakest direction fits as well";
       return RegistrationStatus::kAmbiguous;
     }
     why.clear();
