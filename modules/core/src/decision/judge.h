@@ -18,7 +18,9 @@
 ///   A best that nothing rivals but both scans contradict is no answer: the true motion was
 ///   not among the candidates (a symmetric building seen after a large turn).
 /// - not repeated: no motion a period of repeated structure off it (a door further along a
-///   row of doors) lays nearly as much of what both scans saw on the target (repetition.h).
+///   row of doors) lays nearly as much of what both scans saw on the target (repetition.h);
+/// - for the contours' own motion, the best along its weakest direction: refinements started
+///   along it out to the scan's RMS range reach no distinct motion that scores as well.
 /// Free-space evidence enters through the score: a rival that puts walls where the other scan
 /// looked through empty space scores lower and is no rival.
 

@@ -60,7 +60,8 @@ struct RegistrationParams {
   /// (RefinementResult::weakest_direction), both ways, must settle back or fit worse where it
   /// settles. A room or a corridor with a closed end passes; a bare corridor, a circle seen
   /// from inside or a corridor whose axis only a small stub constrains stay "not converged".
-  /// 0 skips this check.
+  /// The local fallback's motion must also be the best along that direction out to the scan's
+  /// RMS range (a distinct motion there that fits as well: ambiguous). 0 skips both checks.
   double probe_distance = 0.2;
 
   bool validate(std::string *why = nullptr) const;
