@@ -333,10 +333,17 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
           " % of the source contour lies on the target";
     return true;
   };
-  // A motion a period along repeated structure that scores clearly better than the best (by
-  // more than the tie) takes its place and is judged in turn, at most kMaxPromotions times: the
-  // contours' hypotheses can all lie a period off along a corridor of evenly spaced doors.
+  // A motion a period along repeated structure, or along the weakest direction, that scores
+  // clearly better than the best (by more than the tie) takes its place and is judged in turn,
+  // at most kMaxPromotions times: the contours' hypotheses can all lie a period off along a
+  // corridor of evenly spaced doors.
   for (int promoted = 0;; ++promoted) {
+    const auto promotes = [&] {
+      if (promoted == kMaxPromotions || !found.rival || !(found.rival->score > scorer.score(found.best) + kScoreTie))
+        return false;
+      found.promoteRival();
+      return true;
+    };
     if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;
     if (!pinnedAfterPromotions(found, params, buffers, scorer)) {
       why = "refined on the contours, a direction stays weakly constrained (corridor, circle)";
@@ -353,18 +360,12 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
       return RegistrationStatus::kContradicted;
     }
     if (!standsAgainstRepetition(found, params, buffers, scorer)) {
-      if (promoted < kMaxPromotions && found.rival && found.rival->score > scorer.score(found.best) + kScoreTie) {
-        found.promoteRival();
-        continue;
-      }
+      if (promotes()) continue;
       why = "refined on the contours, a motion a period along repeated structure fits what both scans saw as well";
       return RegistrationStatus::kAmbiguous;
     }
     if (params.probe_distance > 0.0 && !unrivalledAlongWeakestDirection(found, params, buffers, scorer)) {
-      if (promoted < kMaxPromotions && found.rival && found.rival->score > scorer.score(found.best) + kScoreTie) {
-        found.promoteRival();
-        continue;
-      }
+      if (promotes()) continue;
       why = "refined on the contours, a distinct motion along the weakest direction fits as well";
       return RegistrationStatus::kAmbiguous;
     }
