@@ -79,18 +79,18 @@ constexpr double kSweepStep = 0.5;
 // contours' best laid door frames and wall ends on others further along, or a second alias.
 // Refinements start every kSweepStep m along the direction, both ways, from twice that out to
 // the RMS range of the best's paired points (RefinementResult::rms_range): farther, a moved
-// scan shares little of what the other saw. They run on samples twice as sparse, as the
-// screening of hypotheses does; one that settles on a distinct motion scoring within twice the
-// tie of the best (the sparse samples' share may differ by about a tie) is refined in full,
-// and scored.
+// scan shares little of what the other saw. Each is screened as the hypotheses are (refine.h:
+// kScreeningIterations on samples twice as sparse); one that heads for a distinct motion and
+// already scores within twice the tie of the best (after the screening it has not settled
+// yet) is refined in full from there, and scored.
 bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                                      Scorer &scorer) {
   const RefinementResult &best = found.best.refined;
   const double best_score = scorer.score(found.best);
   RefinementParams from_start = params.refinement;
   from_start.max_distance = params.refinement.max_distance + 0.5 * kSweepStep;
-  RefinementParams polish = params.refinement;  // the sparse refinement ended at the smallest pairing distance
-  polish.max_distance = polish.min_distance;
+  RefinementParams screening = from_start;
+  screening.max_iterations = kScreeningIterations;
   const std::vector<Eigen::Vector2d> &sparse =
       samplesOf(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples, buffers.sparse_sampled);
   // A start that has come back near the best leads to the best: stop there.
@@ -102,11 +102,11 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
     for (const double sign : {1.0, -1.0}) {
       const Eigen::Vector3d off = sign * along * best.weakest_direction;
       const RefinementResult quick =
-          buffers.refiner.refine(sparse, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_start, near_best);
+          buffers.refiner.refine(sparse, rigidTransform(x + off(0), y + off(1), yaw + off(2)), screening, near_best);
       if (motionDistance(quick.transform, best.transform) <= kDistinctMotions ||
           scorer.score(quick) <= best_score - 2.0 * kScoreTie)
         continue;
-      const RefinementResult r = buffers.refiner.refine(buffers.samples, quick.transform, polish, near_best);
+      const RefinementResult r = buffers.refiner.refine(buffers.samples, quick.transform, from_start, near_best);
       if (motionDistance(r.transform, best.transform) <= kDistinctMotions) continue;
       const double score = scorer.score(r);
       found.consider(r, score);

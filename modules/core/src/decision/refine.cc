@@ -44,7 +44,7 @@ const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &sou
     std::vector<Screened> screened;
     for (std::size_t k = 0; k < starts.size(); ++k) {
       RefinementParams quick = *starts[k].params;
-      quick.max_iterations = 2;
+      quick.max_iterations = kScreeningIterations;
       const RefinementResult r = refiner.refine(sparse, rigidPart(starts[k].motion), quick);
       screened.push_back({r.overlap, k, r.transform});
     }

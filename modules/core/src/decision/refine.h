@@ -18,6 +18,10 @@ namespace contour_reg::decision {
 /// Candidates refined in full at most.
 constexpr std::size_t kRefinedInFull = 3;
 
+/// Iterations of a screening pass, on the source sampled twice as sparse: enough to show
+/// where a start leads and how well it fits there.
+constexpr int kScreeningIterations = 2;
+
 /// The refiner of `buffers`, indexing `target` (rebuilt only for a different extraction).
 const ContourRefiner &refinerFor(const ContourFeatures &target, RegistrationBuffers &buffers);
 
