@@ -1,6 +1,7 @@
 // Pairs of the real logs in ../shared/datasets that test one verdict of the judge,
 // registered from a zero guess as a PCL user would. Skipped when the logs are absent.
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -15,6 +16,26 @@ namespace {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
+// Registers scan `source` of `log` onto scan `target` from a zero guess, as a PCL user would:
+// a new registration object, both clouds set, align().
+RegistrationResult registerScans(const io::ScanLog &log, std::size_t target, std::size_t source) {
+  ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
+  registration.setInputTarget(odometry::beamCloud(log.entries.at(target).scan));
+  registration.setInputSource(odometry::beamCloud(log.entries.at(source).scan));
+  Cloud aligned;
+  registration.align(aligned);
+  return registration.getResult();
+}
+
+// The Radish infinite-corridor log (GMapping-corrected), read once for every test; null when absent.
+const io::ScanLog *infiniteCorridor() {
+  static const std::unique_ptr<io::ScanLog> log = [] {
+    const std::string path = test::sharedDataset("radish-gmapping-corrected/infinite-corridor-corrected.log.gz");
+    return path.empty() ? nullptr : std::make_unique<io::ScanLog>(io::readLog(path));
+  }();
+  return log.get();
+}
+
 // mit-csail, relation 1134864970.88318 -> 1134864971.52318 (scans 1598 and 1601): the robot
 // turns 31.5 deg and moves 0.67 m. Three corners agree on a motion 90 deg off, under which
 // 35 % of the source contour lies on the target and the free space contradicts nothing. The
@@ -26,19 +47,15 @@ TEST(RelationPairs, AFewCornersThatExplainLittleOfTheScanMeetTheContoursHypothes
   const std::string path = test::sharedDataset("mit-csail/mit-csail.clf");
   if (path.empty()) GTEST_SKIP() << "../shared/datasets/mit-csail is absent";
   const io::ScanLog log = io::readLog(path);
-  ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  registration.setInputTarget(odometry::beamCloud(log.entries[io::nearestEntry(log, 1134864970.88318)].scan));
-  registration.setInputSource(odometry::beamCloud(log.entries[io::nearestEntry(log, 1134864971.52318)].scan));
-  Cloud aligned;
-  registration.align(aligned);
+  const RegistrationResult result =
+      registerScans(log, io::nearestEntry(log, 1134864970.88318), io::nearestEntry(log, 1134864971.52318));
 
   const auto error_to_truth = [](const Eigen::Matrix3d &t, double *turn_deg) {
     *turn_deg = std::abs(std::remainder(std::atan2(t(1, 0), t(0, 0)) - (-0.55017), 2 * M_PI)) * 180 / M_PI;
     return std::hypot(t(0, 2) - 0.65191, t(1, 2) - (-0.15332));
   };
-  const RegistrationResult &result = registration.getResult();
   double turn = 0.0;
-  if (registration.hasConverged()) {
+  if (result.converged) {
     // Converging must be right.
     EXPECT_LT(error_to_truth(result.transform, &turn), 0.1);
     EXPECT_LT(turn, 2.0);
@@ -57,19 +74,12 @@ TEST(RelationPairs, AFewCornersThatExplainLittleOfTheScanMeetTheContoursHypothes
 // contour lies on the target; the motion a period ahead of that, the truth, puts 59 % there and
 // nothing in free space. Scoring clearly better, it takes the best's place and is judged in turn.
 TEST(RelationPairs, AMotionAPeriodAlongTheCorridorThatScoresClearlyBetterTakesTheBestsPlace) {
-  const std::string path = test::sharedDataset("radish-gmapping-corrected/infinite-corridor-corrected.log.gz");
-  if (path.empty()) GTEST_SKIP() << "../shared/datasets/radish-gmapping-corrected is absent";
-  const io::ScanLog log = io::readLog(path);
-  ASSERT_GT(log.entries.size(), 463u);
-  ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  registration.setInputTarget(odometry::beamCloud(log.entries[461].scan));
-  registration.setInputSource(odometry::beamCloud(log.entries[463].scan));
-  Cloud aligned;
-  registration.align(aligned);
+  const io::ScanLog *log = infiniteCorridor();
+  if (!log) GTEST_SKIP() << "../shared/datasets/radish-gmapping-corrected is absent";
+  const RegistrationResult result = registerScans(*log, 461, 463);
 
   // The corrected poses' motion from scan 461 to scan 463.
-  const RegistrationResult &result = registration.getResult();
-  ASSERT_TRUE(registration.hasConverged()) << result.reason;
+  ASSERT_TRUE(result.converged) << result.reason;
   const Eigen::Matrix3d &t = result.transform;
   EXPECT_LT(std::hypot(t(0, 2) - 2.0295, t(1, 2) - (-0.0844)), 0.1);
   EXPECT_LT(std::abs(std::remainder(std::atan2(t(1, 0), t(0, 0)) - (-0.01030), 2 * M_PI)) * 180 / M_PI, 2.0);
@@ -82,19 +92,12 @@ TEST(RelationPairs, AMotionAPeriodAlongTheCorridorThatScoresClearlyBetterTakesTh
 // 1 m back along the corridor settles 0.65 m behind it and fits about as well (52 %): the
 // judge calls the pair ambiguous rather than return a motion 3 m short.
 TEST(RelationPairs, ADistinctMotionAlongTheCorridorThatFitsAsWellIsAmbiguous) {
-  const std::string path = test::sharedDataset("radish-gmapping-corrected/infinite-corridor-corrected.log.gz");
-  if (path.empty()) GTEST_SKIP() << "../shared/datasets/radish-gmapping-corrected is absent";
-  const io::ScanLog log = io::readLog(path);
-  ASSERT_GT(log.entries.size(), 1810u);
-  ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
-  registration.setInputTarget(odometry::beamCloud(log.entries[1807].scan));
-  registration.setInputSource(odometry::beamCloud(log.entries[1810].scan));
-  Cloud aligned;
-  registration.align(aligned);
+  const io::ScanLog *log = infiniteCorridor();
+  if (!log) GTEST_SKIP() << "../shared/datasets/radish-gmapping-corrected is absent";
+  const RegistrationResult result = registerScans(*log, 1807, 1810);
 
   // The corrected poses' motion from scan 1807 to scan 1810: converging must be right.
-  const RegistrationResult &result = registration.getResult();
-  if (registration.hasConverged()) {
+  if (result.converged) {
     EXPECT_LT(std::hypot(result.transform(0, 2) - 3.1435, result.transform(1, 2) - 0.0018), 0.1);
   } else {
     EXPECT_EQ(result.status, RegistrationStatus::kAmbiguous) << result.reason;

@@ -103,8 +103,9 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
       const Eigen::Vector3d off = sign * along * best.weakest_direction;
       const RefinementResult quick =
           buffers.refiner.refine(sparse, rigidTransform(x + off(0), y + off(1), yaw + off(2)), screening, near_best);
+      // A score is never above the overlap: only a start that overlaps enough pays for the free space.
       if (motionDistance(quick.transform, best.transform) <= kDistinctMotions ||
-          scorer.score(quick) <= best_score - 2.0 * kScoreTie)
+          quick.overlap <= best_score - 2.0 * kScoreTie || scorer.score(quick) <= best_score - 2.0 * kScoreTie)
         continue;
       const RefinementResult r = buffers.refiner.refine(buffers.samples, quick.transform, from_start, near_best);
       if (motionDistance(r.transform, best.transform) <= kDistinctMotions) continue;
