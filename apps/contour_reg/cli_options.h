@@ -93,6 +93,7 @@ struct MethodOptions {
   double contour_step = 0.05, threshold = 0.08, local_fallback = RegistrationParams{}.local_fallback_min_overlap,
          probe_distance = RegistrationParams{}.probe_distance;
   int candidates = 3, arm_elements = 5;
+  bool free_space = RegistrationParams{}.free_space.enabled;
   std::optional<double> icp_max_correspondence;  // unset: each method's tuned value
   double ndt_resolution = 1.0;
   int iterations = 50;
@@ -105,6 +106,7 @@ struct MethodOptions {
     s.registration.correspondence.candidates_per_point = candidates;
     s.registration.local_fallback_min_overlap = local_fallback;
     s.registration.probe_distance = probe_distance;
+    s.registration.free_space.enabled = free_space;
     s.icp_max_correspondence = icp_max_correspondence;
     s.icp_iterations = iterations;
     s.ndt_resolution = ndt_resolution;
@@ -128,9 +130,12 @@ inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
       ->check(inRange(1, 1000));
   command
       .add_option("--local-fallback", options.local_fallback,
-                  "Contour: min contour overlap to accept the refined guess when corners cannot decide (0-1, 0: off)")
+                  "Contour: min contour overlap to accept the refined guess when corners cannot decide; three "
+                  "quarters of it with the beams of both scans agreeing (0-1, 0: off)")
       ->capture_default_str()
       ->check(fraction);
+  command.add_flag("--free-space,!--no-free-space", options.free_space,
+                   "Contour: weigh free-space evidence (on by default; --no-free-space: contour fit alone)");
   command
       .add_option("--probe-distance", options.probe_distance,
                   "Contour: a motion of the local fallback or of few corners must settle back when refined from this "

@@ -33,7 +33,7 @@ std::string listed(const std::vector<std::string> &names);
 odometry::Cloud::Ptr beamsOf(const py::handle &scan, const Twist2D &twist = {});
 
 /// The matcher settings given as keyword arguments (contour_step, threshold, candidates, arm,
-/// local_fallback, probe_distance, icp_max_distance, ndt_resolution, iterations). An unknown
+/// local_fallback, probe_distance, free_space, icp_max_distance, ndt_resolution, iterations). An unknown
 /// name raises TypeError, a value the library rejects ValueError.
 odometry::MatcherSettings matcherSettings(const py::kwargs &settings);
 

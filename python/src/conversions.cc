@@ -46,6 +46,7 @@ odometry::MatcherSettings matcherSettings(const py::kwargs &settings) {
       {"local_fallback",
        [](Settings &s, const py::handle &v) { s.registration.local_fallback_min_overlap = v.cast<double>(); }},
       {"probe_distance", [](Settings &s, const py::handle &v) { s.registration.probe_distance = v.cast<double>(); }},
+      {"free_space", [](Settings &s, const py::handle &v) { s.registration.free_space.enabled = v.cast<bool>(); }},
       {"icp_max_distance", [](Settings &s, const py::handle &v) { s.icp_max_correspondence = v.cast<double>(); }},
       {"ndt_resolution", [](Settings &s, const py::handle &v) { s.ndt_resolution = v.cast<double>(); }},
       {"iterations", [](Settings &s, const py::handle &v) { s.icp_iterations = v.cast<int>(); }},

@@ -108,7 +108,7 @@ void bindRegistration(py::module_ &m) {
         "beams) with `method` (see methods()), from `guess` (3 x 3, source to target; None: identity). "
         "source_twist / target_twist: (vx m/s, vy m/s, wz rad/s), the sensor's velocity over a LaserScan's sweep: "
         "a scan with time_increment is deskewed by it first. Keyword "
-        "settings: contour_step (m), threshold, arm, candidates, local_fallback, probe_distance (m), "
+        "settings: contour_step (m), threshold, arm, candidates, local_fallback, probe_distance (m), free_space, "
         "icp_max_distance (m), ndt_resolution (m), iterations. Releases the GIL while it registers.");
 }
 

@@ -241,10 +241,11 @@ expect_match("${LAST_OUT}" "\\| contour \\| 100.0 % \\| 100.0 % \\| 0.0 % \\|")
 
 # relations reports, for each kind of decline, on how many pairs the motion the method declined
 # was right. Without special points (threshold 0.99) every pair goes to the contours' own
-# hypotheses, and an overlap of 100 % is more than any pair gives: both pairs decline the motion
-# they found, the true 0.25 m ahead, right against the first relation and not the second.
+# hypotheses, and an overlap of 100 % is more than any pair gives (without free space, which lets
+# the beams vouch for less): both pairs decline the motion they found, the true 0.25 m ahead,
+# right against the first relation and not the second. With free space the beams agree with it.
 expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour --threshold 0.99
-           --local-fallback 1 --pairs-csv ${WORK_DIR}/declined.csv)
+           --local-fallback 1 --no-free-space --pairs-csv ${WORK_DIR}/declined.csv)
 expect_match("${LAST_ERR}" "contour failed: low_overlap: 2; the motion it declined was within the tolerance on 1")
 file(STRINGS ${WORK_DIR}/declined.csv rows REGEX "^contour,")
 foreach(row IN LISTS rows)
@@ -256,6 +257,9 @@ foreach(row IN LISTS rows)
     message(FATAL_ERROR "relations: declined motion ${CMAKE_MATCH_1} m ahead, not 0.25, in ${row}")
   endif()
 endforeach()
+expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour --threshold 0.99
+           --local-fallback 1)
+expect_match("${LAST_OUT}" "\\| contour \\| 50.0 % \\| 100.0 % \\| 50.0 % \\|")
 
 # simulate on a map image, and a path that fits nowhere.
 file(WRITE ${WORK_DIR}/paths.txt "# name x y ...\nshort 1 1 3 1\n")

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -128,6 +129,48 @@ TEST(Decision, AMotionBothScansContradictIsDeclined) {
   const RegistrationResult without = registerPair(before, target, source, withoutFreeSpace(), &after);
   ASSERT_TRUE(without.converged) << without.reason;
   EXPECT_LT(errorOf(without, target, source).head<2>().norm(), 0.02);
+}
+
+// Where the contours support their own motion only weakly (an overlap under local_fallback_min_overlap
+// but at least beam_agreed_overlap_share of it), it stands when the beams of both scans agree with it. Chairs
+// stand in the target scan only, where the source looks through empty space: their legs are
+// returns, too short to be contour, and the weak motion is declined for its low overlap; the
+// same motion supported well stands despite them. Without free space the weak motion is declined.
+TEST(Decision, AWeaklySupportedMotionStandsOnlyWhereTheBeamsAgree) {
+  const simulation::World room = simulation::makeFurnishedRoom();
+  simulation::World chairs = room;
+  for (double x = -4.5; x < 6.0; x += 1.5)  // three rows of chairs, four legs each
+    for (const double y : {-2.5, 1.5, 3.5})
+      for (const Eigen::Vector2d leg : {Eigen::Vector2d(-0.2, -0.2), Eigen::Vector2d(-0.2, 0.2),
+                                        Eigen::Vector2d(0.2, -0.2), Eigen::Vector2d(0.2, 0.2)})
+        chairs.addCircle(Eigen::Vector2d(x, y) + leg, 0.025);
+  const Eigen::Isometry2d target = test::pose2d(0.0, -0.4, 10), source = test::pose2d(0.3, -0.3, 14);
+  RegistrationParams params;
+  params.min_inliers = 1000;  // the corners never decide: the contours' own motion is judged
+  const RegistrationResult strong = registerPair(room, target, source, params);
+  ASSERT_TRUE(strong.converged && strong.from_local_fallback) << strong.reason;
+  const RegistrationResult strong_among_chairs = registerPair(chairs, target, source, params, &room);
+  ASSERT_TRUE(strong_among_chairs.converged) << strong_among_chairs.reason;
+
+  decision::Checks checks;  // the same overlap made weak
+  params.local_fallback_min_overlap = std::min(1.0, strong.overlap + 0.05);
+  checks.beam_agreed_overlap_share = (strong.overlap - 0.1) / params.local_fallback_min_overlap;
+  ASSERT_TRUE(params.validate() && checks.validate());
+  const RegistrationResult weak = registerPair(room, target, source, params, nullptr, checks);
+  ASSERT_TRUE(weak.converged) << weak.reason;
+  EXPECT_LT(errorOf(weak, target, source).head<2>().norm(), 0.02);
+
+  const RegistrationResult weak_among_chairs = registerPair(chairs, target, source, params, &room, checks);
+  EXPECT_FALSE(weak_among_chairs.converged) << weak_among_chairs.reason;
+  EXPECT_EQ(weak_among_chairs.status, RegistrationStatus::kLowOverlap) << weak_among_chairs.reason;
+  EXPECT_NE(weak_among_chairs.reason.find("returns lie in the other's free space"), std::string::npos)
+      << weak_among_chairs.reason;
+
+  RegistrationParams without = params;
+  without.free_space.enabled = false;
+  const RegistrationResult weak_without = registerPair(room, target, source, without, nullptr, checks);
+  EXPECT_FALSE(weak_without.converged);
+  EXPECT_EQ(weak_without.status, RegistrationStatus::kLowOverlap) << weak_without.reason;
 }
 
 // A square room seen from its centre, turned 45 deg: turned -45 deg, the scan fits as well.

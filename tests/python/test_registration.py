@@ -41,10 +41,11 @@ def test_contour_recovers_simulated_motion(s_run):
 
 
 def test_a_declined_registration_gives_the_motion_it_declined(s_run):
-    # No special points (threshold 0.99) and all of the contour demanded on the target: the
-    # contours' own best motion is found and declined for low overlap.
+    # No special points (threshold 0.99), all of the contour demanded on the target, and no
+    # free space to let the beams vouch for less: the contours' own best motion is found and
+    # declined for low overlap.
     truth = true_motion(s_run, 0, 2)
-    result = cr.register(s_run.log[2], s_run.log[0], threshold=0.99, local_fallback=1.0)
+    result = cr.register(s_run.log[2], s_run.log[0], threshold=0.99, local_fallback=1.0, free_space=False)
     assert not result.converged and result.status == "low_overlap", result
     d = result.declined
     error_m, error_rad = pose_error((d[0, 2], d[1, 2], np.arctan2(d[1, 0], d[0, 0])), truth)

@@ -100,4 +100,10 @@ void splitIntoSegments(const ComplexSequence &polar_code, const SegmentationPara
   }
 }
 
+void usableReturns(const ComplexSequence &polar_code, const SegmentationParams &params, ComplexSequence &returns) {
+  returns.clear();
+  for (const Complex &point : polar_code)
+    if (isUsable(point, params)) returns.push_back(point);
+}
+
 }  // namespace contour_reg

@@ -15,6 +15,7 @@ void ContourFeatures::clear() {
   buffers.contours.clear(contours);
   buffers.responses.clear(responses);
   buffers.special_points.clear(special_points);
+  returns.clear();
   extraction = 0;
 }
 
@@ -28,6 +29,7 @@ void extract(const ComplexSequence &polar_code, const SegmentationParams &segmen
   features.extraction = ++extractions;
   ContourFeatures::Buffers &buffers = features.buffers;
   splitIntoSegments(polar_code, segmentation, features.segments, buffers.segments);  // stage A
+  usableReturns(polar_code, segmentation, features.returns);
   equalizeSegments(features.segments, params.equalization, features.contours, buffers.contours, buffers.arc);  // B
   buffers.bank.build(params.corner_filter);  // stage C
   buffers.responses.resize(features.responses, features.contours.size());

@@ -180,4 +180,33 @@ FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const R
   return evidence;
 }
 
+namespace {
+
+struct ReturnCounts {
+  int tested = 0, contradicted = 0;
+};
+
+// The finite points of `returns` moved by `motion` against `view`.
+void countReturns(const ComplexSequence &returns, const RangeView &view, const Eigen::Matrix3d &motion, double margin,
+                  ReturnCounts &counts) {
+  for (const Complex &p : returns) {
+    if (!isFinite(p)) continue;
+    const RangeView::Sight sight = view.sightOf(transformPoint(motion, toEigen(p)), margin);
+    if (sight == RangeView::Sight::kNoEvidence) continue;
+    ++counts.tested;
+    counts.contradicted += sight == RangeView::Sight::kSeenThrough;
+  }
+}
+
+}  // namespace
+
+double contradictedReturnShare(const ComplexSequence &source_returns, const RangeView &target_view,
+                               const ComplexSequence &target_returns, const RangeView &source_view,
+                               const Eigen::Matrix3d &motion, double margin) {
+  ReturnCounts counts;
+  countReturns(source_returns, target_view, motion, margin, counts);
+  countReturns(target_returns, source_view, rigidInverse(motion), margin, counts);
+  return counts.tested > 0 ? static_cast<double>(counts.contradicted) / counts.tested : 0.0;
+}
+
 }  // namespace contour_reg

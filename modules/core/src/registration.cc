@@ -82,6 +82,10 @@ bool decision::Checks::validate(std::string *why) const {
     if (why) *why = "corner_min_overlap must be in [0, 1]";
     return false;
   }
+  if (!(beam_agreed_overlap_share >= 0.0 && beam_agreed_overlap_share <= 1.0)) {
+    if (why) *why = "beam_agreed_overlap_share must be in [0, 1]";
+    return false;
+  }
   if (probe_max_inliers < 0 || guess_check_max_inliers < 0) {
     if (why) *why = "probe_max_inliers and guess_check_max_inliers must be >= 0";
     return false;
@@ -288,7 +292,7 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
   decision::Judged judged =
       decision::chooseBest(decision::refineHypotheses(source, target, starts, buffers), guess, scorer);
   std::string why;
-  const RegistrationStatus verdict = decision::judgeContourMotion(judged, params, buffers, scorer, why);
+  const RegistrationStatus verdict = decision::judgeContourMotion(judged, params, checks, buffers, scorer, why);
   // The corner motion declined before, if any, is weighed with what the contours found.
   std::optional<RejectedMotion> declined = std::move(result.rejected);
   result.rejected.reset();

@@ -27,6 +27,12 @@ struct Checks {
   /// contour on the target contour, or it goes to the local fallback: corners paired wrongly
   /// along cluttered or noisy walls can agree on a motion the contours refute (0: no check).
   double corner_min_overlap = 0.3;
+  /// fraction of RegistrationParams::local_fallback_min_overlap: the contours' own motion with
+  /// less overlap, but at least this share of it, stands when the beams of both scans agree with
+  /// it (at most kScoreTie of their returns in the other scan's free space, beam by beam):
+  /// views that share little, as in open halls, pair little contour at the right motion. 1: the
+  /// overlap alone decides; free space off: the same.
+  double beam_agreed_overlap_share = 0.75;
   /// m, the inlier special points must span at least this, or the motion is degenerate.
   double min_inlier_spread = 0.3;
   /// m, the refinement of the guess (identity without one) in the local fallback and in the

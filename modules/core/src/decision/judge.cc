@@ -325,13 +325,42 @@ RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const R
   return RegistrationStatus::kConverged;
 }
 
-RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
-                                      Scorer &scorer, std::string &why) {
+RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, const Checks &checks,
+                                      RegistrationBuffers &buffers, Scorer &scorer, std::string &why) {
   const RefinementResult &refined = found.best.refined;
+  // Support: local_fallback_min_overlap of the source contour on the target; where the views
+  // share less, down to beam_agreed_overlap_share of it when the beams of both scans agree
+  // with the motion (below).
+  const double least_overlap =
+      params.local_fallback_min_overlap * (params.free_space.enabled ? checks.beam_agreed_overlap_share : 1.0);
+  double weak_overlap = 1.0;  // the least overlap of a best on the way, when one was weakly supported
+  const auto weaklySupported = [&] { return weak_overlap < params.local_fallback_min_overlap; };
+  const auto lowOverlapText = [&] {
+    return "at best " + std::to_string(static_cast<int>(100 * weak_overlap)) +
+           " % of the source contour lies on the target";
+  };
+  const auto decline = [&](RegistrationStatus status, const std::string &finding) {
+    // A weakly supported fallback stays declined for its low overlap, whatever else it failed.
+    if (weaklySupported() && status != RegistrationStatus::kLowOverlap) {
+      why = "refined on the contours, " + lowOverlapText() + ", and " + finding;
+      return RegistrationStatus::kLowOverlap;
+    }
+    why = "refined on the contours, " + finding;
+    return status;
+  };
   const auto overlapsTooLittle = [&] {
-    if (refined.overlap >= params.local_fallback_min_overlap) return false;
-    why = "refined on the contours, at best " + std::to_string(static_cast<int>(100 * refined.overlap)) +
-          " % of the source contour lies on the target";
+    weak_overlap = std::min(weak_overlap, refined.overlap);
+    return refined.overlap < least_overlap;
+  };
+  // A motion that was supported only weakly must agree with everything both scans saw: at most
+  // the tie's share of their returns, beam by beam, in the other scan's free space. The score's
+  // evidence counts stretches of contour; a cluttered room's table legs, posts and short pieces
+  // of wall are returns too.
+  const auto beamsDisagree = [&](std::string &finding) {
+    if (!weaklySupported()) return false;
+    const double share = scorer.contradictedReturns(refined.transform);
+    if (share < kScoreTie) return false;
+    finding = std::to_string(static_cast<int>(100 * share)) + " % of the scans' returns lie in the other's free space";
     return true;
   };
   // A motion a period along repeated structure, or along the weakest direction, that scores
@@ -345,31 +374,26 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
       found.promoteRival();
       return true;
     };
-    if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;
-    if (!pinnedAfterPromotions(found, params, buffers, scorer)) {
-      why = "refined on the contours, a direction stays weakly constrained (corridor, circle)";
-      return RegistrationStatus::kUnconstrained;
-    }
-    if (overlapsTooLittle()) return RegistrationStatus::kLowOverlap;  // a motion a probe found
-    if (found.ambiguous) {
-      why = "refined on the contours, distinct motions fit equally well (repeated structure)";
-      return RegistrationStatus::kAmbiguous;
-    }
-    std::string seen_through;
-    if (refuted(found, scorer, seen_through)) {
-      why = "refined on the contours, the other scan saw through " + seen_through;
-      return RegistrationStatus::kContradicted;
-    }
+    if (overlapsTooLittle()) return decline(RegistrationStatus::kLowOverlap, lowOverlapText());
+    if (!pinnedAfterPromotions(found, params, buffers, scorer))
+      return decline(RegistrationStatus::kUnconstrained, "a direction stays weakly constrained (corridor, circle)");
+    if (overlapsTooLittle())  // a motion a probe found
+      return decline(RegistrationStatus::kLowOverlap, lowOverlapText());
+    if (found.ambiguous)
+      return decline(RegistrationStatus::kAmbiguous, "distinct motions fit equally well (repeated structure)");
+    std::string finding;
+    if (refuted(found, scorer, finding))
+      return decline(RegistrationStatus::kContradicted, "the other scan saw through " + finding);
     if (!standsAgainstRepetition(found, params, buffers, scorer)) {
       if (promotes()) continue;
-      why = "refined on the contours, a motion a period along repeated structure fits what both scans saw as well";
-      return RegistrationStatus::kAmbiguous;
+      return decline(RegistrationStatus::kAmbiguous,
+                     "a motion a period along repeated structure fits what both scans saw as well");
     }
     if (params.probe_distance > 0.0 && !unrivalledAlongWeakestDirection(found, params, buffers, scorer)) {
       if (promotes()) continue;
-      why = "refined on the contours, a distinct motion along the weakest direction fits as well";
-      return RegistrationStatus::kAmbiguous;
+      return decline(RegistrationStatus::kAmbiguous, "a distinct motion along the weakest direction fits as well");
     }
+    if (beamsDisagree(finding)) return decline(RegistrationStatus::kLowOverlap, lowOverlapText() + ", and " + finding);
     why.clear();
     return RegistrationStatus::kConverged;
   }

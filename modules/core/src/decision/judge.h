@@ -70,8 +70,8 @@ RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const R
 
 /// The verdict on the contours' own best motion when the corners did not decide: converged,
 /// low overlap, unconstrained, ambiguous or contradicted, with the reason in `why`.
-RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
-                                      Scorer &scorer, std::string &why);
+RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &params, const Checks &checks,
+                                      RegistrationBuffers &buffers, Scorer &scorer, std::string &why);
 
 /// What `refined` pins when its weakest direction is taken as free (RegistrationResult::pinned):
 /// its information with that direction marginalised out, and the turn term of its covariance

@@ -49,6 +49,10 @@ class Scorer {
   /// view, the target's in the source's (none with free space off).
   std::pair<FreeSpaceEvidence, FreeSpaceEvidence> evidenceEachWay(const Eigen::Matrix3d &motion);
 
+  /// The share of both scans' returns, beam by beam, that `motion` puts in the other scan's
+  /// free space (contradictedReturnShare; 0 with free space off).
+  double contradictedReturns(const Eigen::Matrix3d &motion);
+
   /// The target's view (built on first use, free space on or off).
   const RangeView &targetView();
 

@@ -58,4 +58,8 @@ std::vector<ContourSegment> splitIntoSegments(const ComplexSequence &polar_code,
 void splitIntoSegments(const ComplexSequence &polar_code, const SegmentationParams &params,
                        std::vector<ContourSegment> &segments, SpareElements<ContourSegment> &spare);
 
+/// The points of a polar code that the segmentation may use (finite, within its range limits),
+/// isolated returns included, into `returns`: what the scan saw.
+void usableReturns(const ComplexSequence &polar_code, const SegmentationParams &params, ComplexSequence &returns);
+
 }  // namespace contour_reg

@@ -32,6 +32,9 @@ struct ContourFeatures {
   std::vector<EqualizedContour> contours;    ///< stage B, one per segment
   std::vector<CornerResponse> responses;     ///< stage C, one per contour
   std::vector<SpecialPoint> special_points;  ///< stage C, all contours
+  /// Every return stage A could use, isolated ones too (sensor frame): what the scan saw,
+  /// for the beam-by-beam free-space evidence (free_space.h).
+  ComplexSequence returns;
   /// A number unique to the extractContourFeatures call that filled these features (0 for
   /// features made any other way): registration keeps its target-side work under it.
   std::uint64_t extraction = 0;

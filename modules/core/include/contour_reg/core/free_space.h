@@ -100,4 +100,14 @@ FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const R
                                           const Eigen::Matrix3d &motion, const FreeSpaceParams &params,
                                           std::vector<Eigen::Vector2d> *contradicted = nullptr);
 
+/// Beam by beam: of the returns of both scans (sensor frames, isolated returns included,
+/// non-finite points skipped) that fall inside the other scan's view, the share that `motion`
+/// (source to target) puts more than `margin` m in front of the other's measured range along
+/// its beam; 0 when none falls inside. Each view is RangeView::assign() of the other scan's
+/// returns. No run length and no contour: a stand of table legs or a row of posts counts as
+/// much as a wall.
+double contradictedReturnShare(const ComplexSequence &source_returns, const RangeView &target_view,
+                               const ComplexSequence &target_returns, const RangeView &source_view,
+                               const Eigen::Matrix3d &motion, double margin);
+
 }  // namespace contour_reg

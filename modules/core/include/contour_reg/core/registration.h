@@ -181,6 +181,9 @@ struct RegistrationBuffers {
   std::pair<std::uint64_t, double> sampled{0, 0.0}, sparse_sampled{0, 0.0};
   RangeView target_view, source_view;  ///< each scan's view, for free-space evidence
   std::uint64_t viewed_target = 0;     ///< extraction target_view shows (0: none)
+  /// Each scan's view of all its returns (ContourFeatures::returns), for the beam-by-beam evidence.
+  RangeView target_returns_view, source_returns_view;
+  std::uint64_t returns_viewed_target = 0;  ///< extraction target_returns_view shows (0: none)
   /// Working memory of the judge's check for repeated structure: the target's axis and its
   /// contour points across the axis and across the perpendicular (along, across each), kept
   /// while the target is the same extraction; the source's; the votes per lag, the lags found
