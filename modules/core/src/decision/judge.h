@@ -4,7 +4,8 @@
 ///
 /// Of the refined candidates the best score wins (score.h); where scores tie, the motion
 /// nearest the guess (no motion without one). The best is accepted only when it is
-/// - supported: enough of the source contour lies on the target contour after alignment;
+/// - supported: enough of the source contour lies on the target contour after alignment (for
+///   the contours' own motion, less where the beams of both scans agree with it);
 /// - pinned in every direction: refined again from `probe_distance` off along its weakest
 ///   direction, both ways, it settles back or fits worse where it settles (a room passes; a
 ///   bare corridor, a circle seen from inside, a corridor only a short stub closes do not);

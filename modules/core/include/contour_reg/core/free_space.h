@@ -30,7 +30,8 @@ namespace contour_reg {
 
 struct FreeSpaceParams {
   /// Whether registration weighs free-space evidence: when it decides between distinct motions,
-  /// and against the motion it would accept (the `contradicted` verdict).
+  /// against the motion it would accept (the `contradicted` verdict), and, beam by beam, for a
+  /// motion of the contours that overlaps the target little (contradictedReturnShare).
   bool enabled = true;
   /// m, how far in front of the other scan's measured range a point must lie to contradict,
   /// measured across its contour: above range noise and what a right motion's residual error

@@ -51,8 +51,9 @@ struct RegistrationParams {
   /// too close together or collinear), refine on the contours the guess (identity without
   /// one), the motion each candidate pair of corners implies, and the motions the contour
   /// directions suggest (direction_histogram.h), and accept the best when at least this
-  /// fraction of the source contour then lies on the target contour, the contours pin it in
-  /// every direction (probe_distance) and no distinct motion fits as well. <= 0 disables it:
+  /// fraction of the source contour then lies on the target contour (three quarters of it
+  /// when the beams of both scans agree with the motion, free_space.h), the contours pin it
+  /// in every direction (probe_distance) and no distinct motion fits as well. <= 0 disables it:
   /// such pairs then fail. The result says when it came from here (from_local_fallback).
   double local_fallback_min_overlap = 0.4;
   /// m, the probe: the local fallback's motion, and a motion only a few corners agree on,
