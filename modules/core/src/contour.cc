@@ -102,6 +102,7 @@ void splitIntoSegments(const ComplexSequence &polar_code, const SegmentationPara
 
 void usableReturns(const ComplexSequence &polar_code, const SegmentationParams &params, ComplexSequence &returns) {
   returns.clear();
+  returns.reserve(polar_code.size());
   for (const Complex &point : polar_code)
     if (isUsable(point, params)) returns.push_back(point);
 }
