@@ -8,6 +8,7 @@
 #include "contour_reg/core/registration.h"
 #include "contour_reg/core/transform_estimation.h"
 #include "contour_reg/simulation/office.h"
+#include "decision/checks.h"
 #include "scenes.h"
 
 namespace contour_reg {
@@ -17,13 +18,13 @@ namespace {
 // in `before`.
 RegistrationResult registerBetween(const simulation::World &before, const simulation::World &after,
                                    const Eigen::Isometry2d &motion, const simulation::LidarModel &lidar, unsigned seed,
-                                   const RegistrationParams &params = RegistrationParams{}) {
+                                   const decision::Checks &checks = {}) {
   std::mt19937 target_noise(seed), source_noise(seed + 1000), rng(seed);
   const ContourFeatures target = extractContourFeatures(
       simulation::simulateScan(before, test::pose2d(0, 0, 0), lidar, target_noise), ContourParams{});
   const ContourFeatures source =
       extractContourFeatures(simulation::simulateScan(after, motion, lidar, source_noise), ContourParams{});
-  return registerContours(source, target, params, rng);
+  return decision::registerContoursWith(source, target, RegistrationParams{}, checks, rng);
 }
 
 // The same in one unchanging world.
@@ -43,14 +44,14 @@ RegistrationResult registerFrom(const simulation::World &world, const Eigen::Iso
 // The mean normalised estimation error squared of the converged estimates of 60 seeded motions
 // (up to 0.3 m and 5 deg) from the room `before` to the room `after`, seen by `lidar`.
 double meanNees(const simulation::World &before, const simulation::World &after, const simulation::LidarModel &lidar,
-                const RegistrationParams &params = RegistrationParams{}) {
+                const decision::Checks &checks = {}) {
   std::mt19937 draw(2024);
   std::uniform_real_distribution<double> shift(-0.3, 0.3), turn(-5.0, 5.0);
   double sum = 0.0;
   int trials = 0;
   for (unsigned seed = 1; seed <= 60; ++seed) {
     const Eigen::Isometry2d motion = test::pose2d(shift(draw), shift(draw), turn(draw));
-    const RegistrationResult r = registerBetween(before, after, motion, lidar, seed, params);
+    const RegistrationResult r = registerBetween(before, after, motion, lidar, seed, checks);
     if (!r.converged) continue;
     const Eigen::Matrix3d truth = motion.matrix();
     const Eigen::Vector3d error(r.transform(0, 2) - truth(0, 2), r.transform(1, 2) - truth(1, 2),
@@ -171,14 +172,14 @@ simulation::World furnishedRoomWithCartAt(double near_side) {
 // The mean NEES when the cart has been pushed 5 cm between the scans: a stretch of contour that
 // disagrees with the rest, as a nudged chair or a door left ajar does.
 double meanNeesWithMovedCart(double correlation_length) {
-  RegistrationParams params;
-  params.refinement.correlation_length = correlation_length;
+  decision::Checks checks;
+  checks.refinement_model.correlation_length = correlation_length;
   return meanNees(furnishedRoomWithCartAt(3.0), furnishedRoomWithCartAt(3.05), simulation::LidarModel::hokuyoUtm30lx(),
-                  params);
+                  checks);
 }
 
 TEST(Covariance, StretchesOfContourThatDisagreeWidenIt) {
-  const double with = meanNeesWithMovedCart(RefinementParams{}.correlation_length);
+  const double with = meanNeesWithMovedCart(RefinementModel{}.correlation_length);
   const double without = meanNeesWithMovedCart(0.0);
   std::printf("average NEES with a moved cart: %.2f, %.2f without the stretches' term\n", with, without);
   EXPECT_LT(with, 4.0);

@@ -370,7 +370,7 @@ TEST(LocalFallback, TheBestGivesWayToAClearlyBetterMotionAProbeFound) {
 TEST(Refinement, ASlideAlongACorridorCutShortIsFlaggedAndArrivesWhenRefinedOn) {
   const ShallowRecessPair pair(2.0, 0.3, 0.0, 0);
   const ContourRefiner refiner(pair.target, RefinementParams{});
-  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementParams{}.sample_step);
+  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementModel{}.sample_step);
   const RefinementResult cut = refiner.refine(samples, Eigen::Matrix3d::Identity(), RefinementParams{});
   EXPECT_EQ(cut.iterations, RefinementParams{}.max_iterations);
   EXPECT_TRUE(cut.sliding);

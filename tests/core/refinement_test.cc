@@ -38,7 +38,7 @@ Eigen::Matrix3d matrixOf(const Eigen::Isometry2d &pose) { return pose.matrix(); 
 // point on leave the remainder at the same end of every contour of a scan, and registrations
 // then turn their estimates a little one way: over a drive, a heading drift of one sign.
 TEST(Refinement, SamplesDoNotDependOnTheDirectionOfTheContour) {
-  const RefinementParams params;
+  const RefinementModel model;
   for (const double length : {1.05, 1.1, 1.13}) {  // 10 samples 0.1 m apart and 0.05, 0.1, 0.13 m left over
     ComplexSequence line;
     for (int n = 0; n <= 30; ++n) line.push_back({2.0 + length * n / 30.0, 1.0});
@@ -47,8 +47,8 @@ TEST(Refinement, SamplesDoNotDependOnTheDirectionOfTheContour) {
     backward.segments = {ContourSegment{ComplexSequence(line.rbegin(), line.rend()), {}}};
     forward.contours = equalizeSegments(forward.segments, EqualizationParams{});
     backward.contours = equalizeSegments(backward.segments, EqualizationParams{});
-    const std::vector<Eigen::Vector2d> a = contourSamples(forward, params.sample_step);
-    const std::vector<Eigen::Vector2d> b = contourSamples(backward, params.sample_step);
+    const std::vector<Eigen::Vector2d> a = contourSamples(forward, model.sample_step);
+    const std::vector<Eigen::Vector2d> b = contourSamples(backward, model.sample_step);
     ASSERT_EQ(a.size(), b.size()) << length;
     ASSERT_GE(a.size(), 10u);
     for (std::size_t k = 0; k < a.size(); ++k)
@@ -99,7 +99,7 @@ TEST(Refinement, PullsANearbyStartOntoTheTrueMotion) {
 TEST(Refinement, StopsOnceItHasArrivedNearAGivenMotion) {
   const RoomPair pair;
   const ContourRefiner refiner(pair.target, RefinementParams{});
-  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementParams{}.sample_step);
+  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementModel{}.sample_step);
   const Eigen::Matrix3d start = matrixOf(test::pose2d(0.55, -0.05, 8));
   const RefinementResult full = refiner.refine(samples, start, RefinementParams{});
   const auto near_truth = [&](const Eigen::Matrix3d &m) {
@@ -119,16 +119,17 @@ TEST(Refinement, StopsOnceItHasArrivedNearAGivenMotion) {
 TEST(Refinement, TheStretchesTermOnlyWidensTheCovariance) {
   const RoomPair pair;
   const ContourRefiner refiner(pair.target, RefinementParams{});
-  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementParams{}.sample_step);
+  const std::vector<Eigen::Vector2d> samples = contourSamples(pair.source, RefinementModel{}.sample_step);
   const Eigen::Matrix3d start = matrixOf(test::pose2d(0.5, -0.05, 7));
-  RefinementParams without;
+  RefinementModel without;
   without.correlation_length = 0.0;
-  const RefinementResult plain = refiner.refine(samples, start, without);
+  const ContourRefiner plain_refiner(pair.target, RefinementParams{}, without);
+  const RefinementResult plain = plain_refiner.refine(samples, start, RefinementParams{});
   const RefinementResult widened = refiner.refine(samples, start, RefinementParams{});
   EXPECT_TRUE(widened.transform.isApprox(plain.transform));
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> added(widened.covariance - plain.covariance);
   EXPECT_GE(added.eigenvalues().minCoeff(), -1e-12 * plain.covariance.norm());
-  RefinementParams negative;
+  RefinementModel negative;
   negative.correlation_length = -1.0;
   std::string why;
   EXPECT_FALSE(negative.validate(&why));
@@ -141,7 +142,7 @@ TEST(Refinement, TheStretchesTermOnlyWidensTheCovariance) {
 TEST(Refinement, TheCovarianceGrowsAsTheViewsShareLessOfTheContour) {
   const RoomPair pair;
   const ContourRefiner refiner(pair.target, RefinementParams{});
-  const std::vector<Eigen::Vector2d> shared = contourSamples(pair.source, RefinementParams{}.sample_step);
+  const std::vector<Eigen::Vector2d> shared = contourSamples(pair.source, RefinementModel{}.sample_step);
   std::vector<Eigen::Vector2d> half_unseen = shared;
   for (const Eigen::Vector2d &p : shared) half_unseen.push_back(p + Eigen::Vector2d(100.0, 0.0));
   const Eigen::Matrix3d start = matrixOf(test::pose2d(0.5, -0.05, 7));
@@ -167,7 +168,7 @@ TEST(Refinement, AStartAtTheMotionStillEndsWithAPassAtTheFinalPairingDistance) {
       extractContourFeatures(test::scanFrom(room.world, test::pose2d(0, 0, 0), 0.001, 3), ContourParams{});
   const ContourFeatures source = extractContourFeatures(test::scanFrom(room.world, motion, 0.001, 4), ContourParams{});
   const ContourRefiner refiner(target, RefinementParams{});
-  const std::vector<Eigen::Vector2d> samples = contourSamples(source, RefinementParams{}.sample_step);
+  const std::vector<Eigen::Vector2d> samples = contourSamples(source, RefinementModel{}.sample_step);
   Eigen::Matrix3d start = matrixOf(motion);
   for (int k = 0; k < 3; ++k) start = refiner.refine(samples, start, RefinementParams{}).transform;
   const RefinementResult at_motion = refiner.refine(samples, start, RefinementParams{});

@@ -30,7 +30,7 @@ TEST(Correspondence, FragmentDistanceIsEquation14) {
   EXPECT_NEAR(fragmentDistanceSquared(g, n, FragmentDistance::kReal), expected, 1e-12);
 }
 
-// The kd-tree search (both scans with at least kdtree_min_points special points) ranks the same
+// The kd-tree search (both scans with at least kKdTreeMinPoints special points) ranks the same
 // candidates as the search over all pairs when it is asked for more neighbours than there are
 // targets: the furnished room's corners, seen from two poses.
 TEST(Correspondence, TheKdTreeFindsThePairsTheSearchOverAllPairsFinds) {
@@ -40,15 +40,15 @@ TEST(Correspondence, TheKdTreeFindsThePairsTheSearchOverAllPairsFinds) {
   ASSERT_GE(a.special_points.size(), 6u);
   ASSERT_LE(b.special_points.size(), 16u);  // under the 4 x 3 + 4 neighbours the tree returns
   for (int candidates : {1, 3}) {
-    CorrespondenceParams all_pairs, tree;
-    all_pairs.candidates_per_point = tree.candidates_per_point = candidates;
-    all_pairs.kdtree_min_points = 1000;
-    tree.kdtree_min_points = 1;
+    CorrespondenceParams params;
+    params.candidates_per_point = candidates;
     const auto key = [](const Correspondence &c) { return std::make_pair(c.source, c.target); };
     std::vector<std::pair<int, int>> expected, found;
-    for (const Correspondence &c : findCorrespondences(a.special_points, b.special_points, all_pairs))
+    for (const Correspondence &c :
+         findCorrespondences(a.special_points, b.special_points, params, CandidateSearch::kAllPairs))
       expected.push_back(key(c));
-    for (const Correspondence &c : findCorrespondences(a.special_points, b.special_points, tree))
+    for (const Correspondence &c :
+         findCorrespondences(a.special_points, b.special_points, params, CandidateSearch::kKdTree))
       found.push_back(key(c));
     std::sort(expected.begin(), expected.end());
     std::sort(found.begin(), found.end());
@@ -68,11 +68,10 @@ TEST(Correspondence, FragmentsOfDifferentLengthsArePairedAsOverAllPairs) {
   const ContourFeatures b = extractContourFeatures(test::scanFrom(room, test::pose2d(0.3, 0.1, 14), 0.005, 2), {});
   ASSERT_FALSE(a.special_points.empty());
   ASSERT_GT(a.special_points.front().fragment.size(), b.special_points.front().fragment.size());
-  CorrespondenceParams all_pairs, tree;
-  all_pairs.kdtree_min_points = 1000;
-  tree.kdtree_min_points = 1;
-  const std::vector<Correspondence> expected = findCorrespondences(a.special_points, b.special_points, all_pairs);
-  const std::vector<Correspondence> found = findCorrespondences(a.special_points, b.special_points, tree);
+  const std::vector<Correspondence> expected =
+      findCorrespondences(a.special_points, b.special_points, {}, CandidateSearch::kAllPairs);
+  const std::vector<Correspondence> found =
+      findCorrespondences(a.special_points, b.special_points, {}, CandidateSearch::kKdTree);
   ASSERT_EQ(found.size(), expected.size());
   for (std::size_t k = 0; k < found.size(); ++k) {
     EXPECT_EQ(found[k].source, expected[k].source);

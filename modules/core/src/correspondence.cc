@@ -11,8 +11,8 @@ namespace contour_reg {
 
 namespace {
 
-bool compatible(const SpecialPoint &a, const SpecialPoint &b, const CorrespondenceParams &params) {
-  return a.turn == b.turn && std::abs(a.corner_angle - b.corner_angle) <= params.max_angle_difference;
+bool compatible(const SpecialPoint &a, const SpecialPoint &b) {
+  return a.turn == b.turn && std::abs(a.corner_angle - b.corner_angle) <= kMaxCornerAngleDifference;
 }
 
 // The fragment as real numbers for the kd-tree. For the rotation-invariant form it is
@@ -51,8 +51,6 @@ std::vector<int> nearestTargets(const std::vector<SpecialPoint> &source, const s
 
 bool CorrespondenceParams::validate(std::string *why) const {
   if (candidates_per_point < 1) return invalid(why, "correspondence.candidates_per_point must be >= 1");
-  if (!(ratio > 0.0 && ratio <= 1.0)) return invalid(why, "correspondence.ratio must lie in (0, 1]");
-  if (!(max_angle_difference >= 0.0)) return invalid(why, "correspondence.max_angle_difference must be >= 0");
   return true;
 }
 
@@ -73,16 +71,16 @@ double fragmentDistanceSquared(const ComplexSequence &source, const ComplexSeque
 
 std::vector<Correspondence> findCorrespondences(const std::vector<SpecialPoint> &source,
                                                 const std::vector<SpecialPoint> &target,
-                                                const CorrespondenceParams &params) {
+                                                const CorrespondenceParams &params, CandidateSearch search) {
   std::vector<Correspondence> pairs;
   CorrespondenceScratch scratch;
-  findCorrespondences(source, target, params, pairs, scratch);
+  findCorrespondences(source, target, params, pairs, scratch, search);
   return pairs;
 }
 
 void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vector<SpecialPoint> &target,
                          const CorrespondenceParams &params, std::vector<Correspondence> &pairs,
-                         CorrespondenceScratch &scratch) {
+                         CorrespondenceScratch &scratch, CandidateSearch search) {
   pairs.clear();
   if (source.empty() || target.empty()) return;
   // Candidate targets of each source point: every target (small sets) or the nearest
@@ -94,7 +92,8 @@ void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vec
     return std::all_of(points.begin(), points.end(),
                        [&](const SpecialPoint &p) { return p.fragment.size() == length; });
   };
-  const bool use_tree = source.size() >= params.kdtree_min_points && target.size() >= params.kdtree_min_points &&
+  const bool large = source.size() >= kKdTreeMinPoints && target.size() >= kKdTreeMinPoints;
+  const bool use_tree = search != CandidateSearch::kAllPairs && (large || search == CandidateSearch::kKdTree) &&
                         length > 0 && ofLength(source) && ofLength(target);
   const std::size_t per_source =
       use_tree ? std::min<std::size_t>(target.size(), 4 * static_cast<std::size_t>(params.candidates_per_point) + 4)
@@ -109,7 +108,7 @@ void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vec
     ranked.clear();
     for (std::size_t j = 0; j < per_source; ++j) {
       const int t = use_tree ? nearest[s * per_source + j] : static_cast<int>(j);
-      if (!compatible(source[s], target[t], params)) continue;
+      if (!compatible(source[s], target[t])) continue;
       double rotation = 0.0;
       const double r2 = fragmentDistanceSquared(source[s].fragment, target[t].fragment, params.distance, &rotation);
       ranked.push_back({static_cast<int>(s), t, std::sqrt(r2), rotation});
@@ -123,7 +122,7 @@ void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vec
         const double second = std::min_element(ranked.begin() + 1, ranked.end(), [](auto &a, auto &b) {
                                 return a.distance < b.distance;
                               })->distance;
-        if (!(ranked[0].distance < params.ratio * second)) continue;  // ratio test
+        if (!(ranked[0].distance < kUniquenessRatio * second)) continue;  // ratio test
       }
       Correspondence &held = best_for_target[ranked[0].target];
       if (ranked[0].distance < held.distance) held = ranked[0];

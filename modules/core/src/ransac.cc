@@ -20,9 +20,8 @@ bool fit(const RansacParams &params, const Points2D &source, const Points2D &tar
   if (!estimateAffine(source, target, transform)) return false;
   const Eigen::JacobiSVD<Eigen::Matrix2d> svd(transform.topLeftCorner<2, 2>());
   const Eigen::Vector2d scales = svd.singularValues();
-  return transform.topLeftCorner<2, 2>().determinant() > 0.0 &&
-         std::abs(scales(0) - 1.0) <= params.max_affine_distortion &&
-         std::abs(scales(1) - 1.0) <= params.max_affine_distortion;
+  return transform.topLeftCorner<2, 2>().determinant() > 0.0 && std::abs(scales(0) - 1.0) <= kMaxAffineDistortion &&
+         std::abs(scales(1) - 1.0) <= kMaxAffineDistortion;
 }
 
 // How many pairs `transform` takes within t of their target (|H p - q| < t), and the sum of
@@ -108,7 +107,7 @@ void ransac(const Points2D &source, const Points2D &target, const std::vector<do
   const std::size_t sample_size = params.model == TransformModel::kRigid ? 2 : 3;
   const std::size_t n = source.size();
   if (n < sample_size || target.size() != n) return;
-  const bool check_rotations = pair_rotations.size() == n && params.max_rotation_disagreement > 0.0;
+  const bool check_rotations = pair_rotations.size() == n;
 
   std::size_t best_count = 0;
   double best_error = std::numeric_limits<double>::infinity();
@@ -129,7 +128,7 @@ void ransac(const Points2D &source, const Points2D &target, const std::vector<do
     if (check_rotations) {
       const double yaw = yawOf(rigidPart(hypothesis));
       bool agree = true;
-      for (int i : sample) agree = agree && angleDifference(pair_rotations[i], yaw) <= params.max_rotation_disagreement;
+      for (int i : sample) agree = agree && angleDifference(pair_rotations[i], yaw) <= kMaxRotationDisagreement;
       if (!agree) continue;
     }
     double error = 0.0;

@@ -245,13 +245,19 @@ bool RefinementParams::validate(std::string *why) const {
   if (max_iterations < 0) return invalid(why, "refinement.max_iterations must be >= 0");
   if (!(min_distance > 0.0 && max_distance >= min_distance))
     return invalid(why, "refinement distances must be 0 < min <= max");
-  if (!(sample_step > 0.0)) return invalid(why, "refinement.sample_step must be > 0");
-  if (!(huber > 0.0)) return invalid(why, "refinement.huber must be > 0");
   if (!(stop_translation >= 0.0 && stop_rotation >= 0.0))
     return invalid(why, "refinement.stop_translation and stop_rotation must be >= 0");
-  if (!(covariance_scale > 0.0)) return invalid(why, "refinement.covariance_scale must be > 0");
-  if (!(turn_noise >= 0.0)) return invalid(why, "refinement.turn_noise must be >= 0");
-  if (!(correlation_length >= 0.0)) return invalid(why, "refinement.correlation_length must be >= 0");
+  return true;
+}
+
+bool RefinementModel::validate(std::string *why) const {
+  if (!(sample_step > 0.0)) return invalid(why, "refinement model: sample_step must be > 0");
+  if (!(huber > 0.0)) return invalid(why, "refinement model: huber must be > 0");
+  if (!(degeneracy_ratio >= 0.0 && degeneracy_ratio < 1.0))
+    return invalid(why, "refinement model: degeneracy_ratio must lie in [0, 1)");
+  if (!(covariance_scale > 0.0)) return invalid(why, "refinement model: covariance_scale must be > 0");
+  if (!(turn_noise >= 0.0)) return invalid(why, "refinement model: turn_noise must be >= 0");
+  if (!(correlation_length >= 0.0)) return invalid(why, "refinement model: correlation_length must be >= 0");
   return true;
 }
 
@@ -284,8 +290,9 @@ struct ContourRefiner::Index {
 
 ContourRefiner::ContourRefiner() : index_(std::make_unique<Index>()) {}
 
-ContourRefiner::ContourRefiner(const ContourFeatures &target, const RefinementParams &params)
-    : index_(std::make_unique<Index>()), params_(params) {
+ContourRefiner::ContourRefiner(const ContourFeatures &target, const RefinementParams &params,
+                               const RefinementModel &model)
+    : index_(std::make_unique<Index>()), params_(params), model_(model) {
   setTarget(target);
 }
 
@@ -297,8 +304,9 @@ void ContourRefiner::setTarget(const ContourFeatures &target) {
 ContourRefiner::~ContourRefiner() = default;
 
 RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
-                                  const Eigen::Matrix3d &initial, const RefinementParams &params) {
-  return ContourRefiner(target, params).refine(source, initial);
+                                  const Eigen::Matrix3d &initial, const RefinementParams &params,
+                                  const RefinementModel &model) {
+  return ContourRefiner(target, params, model).refine(source, initial);
 }
 
 RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eigen::Matrix3d &initial) const {
@@ -307,7 +315,7 @@ RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eig
 
 RefinementResult ContourRefiner::refine(const ContourFeatures &source, const Eigen::Matrix3d &initial,
                                         const RefinementParams &params) const {
-  return refine(contourSamples(source, params.sample_step), initial, params);
+  return refine(contourSamples(source, model_.sample_step), initial, params);
 }
 
 bool ContourRefiner::pairs(const Eigen::Vector2d &point, double distance) const {
@@ -334,10 +342,10 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   double distance = params.max_distance;
   // Each stretch's share of the gradient, for the covariance (widenByStretches): counted in
   // the passes at the smallest pairing distance, where a refinement ends unless stopped early.
-  const bool by_stretches = params.correlation_length > 0.0;
+  const bool by_stretches = model_.correlation_length > 0.0;
   bool stretches_counted = false;
   Index &work = *index_;
-  if (by_stretches && work.stretch_length != params.correlation_length) work.numberStretches(params.correlation_length);
+  if (by_stretches && work.stretch_length != model_.correlation_length) work.numberStretches(model_.correlation_length);
   std::vector<Eigen::Vector3d> &stretch_gradient = work.stretch_gradient;
   stretch_gradient.resize(by_stretches ? work.stretches : 0);
   const int *stretch = work.stretch.data();
@@ -364,14 +372,14 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
       Eigen::Vector2d normal;
       if (j < 0 || !index.normalAt(j, normal)) continue;
       const double residual = normal.dot(moved - index.points[j]);
-      const double weight = std::abs(residual) <= params.huber ? 1.0 : params.huber / std::abs(residual);
+      const double weight = std::abs(residual) <= model_.huber ? 1.0 : model_.huber / std::abs(residual);
       const Eigen::Vector3d jacobian(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rotated.y(), rotated.x())));
       const Eigen::Vector3d weighted = weight * jacobian;
       addUpperTriangle(h, weighted, jacobian);
       // Samples between the same two raw returns share their noise: together they carry the
       // information of one sample per sample_step of the returns' spacing, so each counts
       // sample_step / spacing of its weight (`surplus` holds the rest).
-      const double share = index.spacing[j] > params.sample_step ? params.sample_step / index.spacing[j] : 1.0;
+      const double share = index.spacing[j] > model_.sample_step ? model_.sample_step / index.spacing[j] : 1.0;
       if (share < 1.0) addUpperTriangle(surplus, (1.0 - share) * weighted, jacobian);
       lever_squares += weight * rotated.squaredNorm();
       weight_sum += weight;
@@ -406,7 +414,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     result.weakest_direction = unit.asDiagonal() * eigen.eigenvectors().col(0);
     Eigen::Matrix3d pinned = Eigen::Matrix3d::Zero();  // projector on the constrained directions
     for (int k = 0; k < 3; ++k) {
-      if (values(k) <= params.degeneracy_ratio * values(2)) continue;
+      if (values(k) <= model_.degeneracy_ratio * values(2)) continue;
       const Eigen::Vector3d v = eigen.eigenvectors().col(k);
       pinned += v * v.transpose();
     }
@@ -441,15 +449,15 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     const double h_rr = h(2, 2);
     if (lever_squares > 0.0 && std::abs(h_tt.determinant()) > 1e-12)
       result.rotation_constraint_ratio = std::max(0.0, h_rr - h_tr.dot(h_tt.inverse() * h_tr)) / lever_squares;
-    result.degenerate = result.constraint_ratio <= params.degeneracy_ratio ||
-                        result.rotation_constraint_ratio <= params.degeneracy_ratio;
+    result.degenerate = result.constraint_ratio <= model_.degeneracy_ratio ||
+                        result.rotation_constraint_ratio <= model_.degeneracy_ratio;
     const double sigma2 = weighted_squares / std::max(1, result.pairs - 3);
     const double less_shared = lessSharedViews(result.overlap);
     const Eigen::Matrix3d counted_information = h - surplus;
-    if (sigma2 > 0.0) result.information = counted_information / (params.covariance_scale * sigma2);
+    if (sigma2 > 0.0) result.information = counted_information / (model_.covariance_scale * sigma2);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(counted_information);
     if (lu.isInvertible()) {
-      result.covariance = params.covariance_scale * sigma2 * lu.inverse();
+      result.covariance = model_.covariance_scale * sigma2 * lu.inverse();
       if (stretches_counted && sigma2 > 0.0) {
         if (const std::optional<Eigen::Matrix3d> widened =
                 widenByStretches(result.covariance, step_h, stretch_gradient)) {
@@ -461,7 +469,7 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
         }
       }
       result.covariance *= less_shared;
-      const double turn = params.turn_noise * std::abs(yawOf(result.transform));
+      const double turn = model_.turn_noise * std::abs(yawOf(result.transform));
       result.covariance(2, 2) += turn * turn;
     }
     result.information /= less_shared;

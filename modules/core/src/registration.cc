@@ -90,7 +90,7 @@ bool decision::Checks::validate(std::string *why) const {
     if (why) *why = "probe_max_inliers and guess_check_max_inliers must be >= 0";
     return false;
   }
-  return true;
+  return refinement_model.validate(why);
 }
 
 bool RegistrationParams::validate(std::string *why) const {
@@ -273,7 +273,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
       return failAtGuess(result, guess, verdict, std::to_string(corners) + " special points" + against);
     }
     if (judged.rival) result.rejected = rejected(*judged.rival, scorer);
-    if (result.degenerate) result.pinned = decision::pinnedPart(refined, params.refinement);
+    if (result.degenerate) result.pinned = decision::pinnedPart(refined, checks.refinement_model);
   }
   result.converged = true;
   result.status = RegistrationStatus::kConverged;
@@ -298,7 +298,7 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
   result.rejected.reset();
   if (verdict != RegistrationStatus::kConverged) {
     if (verdict == RegistrationStatus::kUnconstrained)
-      result.pinned = decision::pinnedPart(judged.best.refined, params.refinement);
+      result.pinned = decision::pinnedPart(judged.best.refined, checks.refinement_model);
     result.status = verdict;
     result.reason += "; " + why;
     const RejectedMotion best = rejected(judged.best, scorer);
@@ -328,6 +328,7 @@ void decision::registerContoursWith(const ContourFeatures &source, const Contour
                                     const RegistrationParams &params, const Checks &checks, std::mt19937 &rng,
                                     const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
                                     RegistrationResult &result) {
+  buffers.refiner.setModel(checks.refinement_model);
   registerByCorners(source, target, params, checks, rng, guess, buffers, result);
   if (!result.converged && isUndecided(result.status) && params.local_fallback_min_overlap > 0.0 &&
       params.refinement.enabled && !source.contours.empty() && !target.contours.empty())

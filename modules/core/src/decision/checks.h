@@ -1,7 +1,7 @@
 #pragma once
 /// @file checks.h
 /// The judge's fixed thresholds: what a motion that few corners agree on must prove before it
-/// stands, and where the contours' own hypotheses start.
+/// stands, and where the contours' own hypotheses start; and the refinement's model.
 ///
 /// They belong to the method, not to a scene: chosen on the three logs with Kümmerle relations,
 /// checked on the twelve Radish logs and on simulated runs (docs/results.md), and the same for
@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "contour_reg/core/contour_features.h"
+#include "contour_reg/core/refinement.h"
 #include "contour_reg/core/registration.h"
 
 namespace contour_reg::decision {
@@ -49,6 +50,8 @@ struct Checks {
   /// with the contours' refinement of the guess, or score clearly better (by more than
   /// kScoreTie); door corners every few metres can match one period off (0: no check).
   int guess_check_max_inliers = 5;
+  /// How the refinement samples and weighs the contours and what its covariance counts (refinement.h).
+  RefinementModel refinement_model;
 
   bool validate(std::string *why = nullptr) const;
 };

@@ -91,8 +91,8 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
   from_start.max_distance = params.refinement.max_distance + 0.5 * kSweepStep;
   RefinementParams screening = from_start;
   screening.max_iterations = kScreeningIterations;
-  const std::vector<Eigen::Vector2d> &sparse =
-      samplesOf(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples, buffers.sparse_sampled);
+  const std::vector<Eigen::Vector2d> &sparse = samplesOf(scorer.source(), 2.0 * buffers.refiner.model().sample_step,
+                                                         buffers.sparse_samples, buffers.sparse_sampled);
   // A start that has come back near the best leads to the best: stop there.
   const auto near_best = [&](const Eigen::Matrix3d &m) {
     return motionDistance(best.transform, m) <= kDistinctMotions / 4;
@@ -148,7 +148,7 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const C
   // that the motion it scores is refined as fully as the best.
   const Eigen::Matrix3d &best = found.best.refined.transform;
   const auto near_best = [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; };
-  samplesOf(scorer.source(), 2.0 * params.refinement.sample_step, buffers.sparse_samples, buffers.sparse_sampled);
+  samplesOf(scorer.source(), 2.0 * buffers.refiner.model().sample_step, buffers.sparse_samples, buffers.sparse_sampled);
   const RefinementResult quick =
       buffers.refiner.refine(buffers.sparse_samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(),
                              widened(params, checks), near_best);
@@ -399,7 +399,7 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
   }
 }
 
-std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const RefinementParams &params) {
+std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const RefinementModel &model) {
   const Eigen::Vector3d &free = refined.weakest_direction;
   const Eigen::Matrix3d &information = refined.information;
   const double along = free.dot(information * free);
@@ -411,7 +411,7 @@ std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const Re
   pinned.information = information;
   if (along > 0.0) pinned.information -= (information * free) * (information * free).transpose() / along;
   // The turn term adds yaw variance t^2; in information form a rank-one update (Woodbury).
-  const double turn = params.turn_noise * std::abs(yawOf(refined.transform));
+  const double turn = model.turn_noise * std::abs(yawOf(refined.transform));
   if (turn > 0.0) {
     const Eigen::Vector3d yaw_column = pinned.information.col(2);
     pinned.information -= yaw_column * yaw_column.transpose() / (1.0 / (turn * turn) + pinned.information(2, 2));

@@ -76,7 +76,7 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
 
 /// What `refined` pins when its weakest direction is taken as free (RegistrationResult::pinned):
 /// its information with that direction marginalised out, and the turn term of its covariance
-/// (RefinementParams::turn_noise) added. None when the refinement paired too few points.
-std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const RefinementParams &params);
+/// (RefinementModel::turn_noise) added. None when the refinement paired too few points.
+std::optional<PinnedMotion> pinnedPart(const RefinementResult &refined, const RefinementModel &model);
 
 }  // namespace contour_reg::decision

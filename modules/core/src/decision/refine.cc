@@ -29,9 +29,9 @@ const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &sou
                                                       std::vector<RefinementStart> &starts,
                                                       RegistrationBuffers &buffers) {
   const ContourRefiner &refiner = refinerFor(target, buffers);
-  // The starts share their sample spacing: the source is sampled once for the full
-  // refinements and once, twice as sparse, for the screening.
-  const double step = starts.front().params->sample_step;
+  // The source is sampled once for the full refinements, at the refiner's spacing, and once,
+  // twice as sparse, for the screening.
+  const double step = refiner.model().sample_step;
   const std::vector<Eigen::Vector2d> &samples = samplesOf(source, step, buffers.samples, buffers.sampled);
   if (starts.size() > kRefinedInFull) {
     const std::vector<Eigen::Vector2d> &sparse =

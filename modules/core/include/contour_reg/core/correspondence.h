@@ -10,11 +10,12 @@
 /// `Re` makes R depend on the rotation between the scans. The rotation-invariant form
 /// replaces Re (G, N) by |(G, N)|; then arg (N, G) is the rotation that takes the
 /// source fragment onto the target one, a free check on each candidate pair. Pairs are
-/// kept that match in turn direction and corner angle; each source point keeps its best
-/// `candidates_per_point` targets (with one, only mutual best matches that pass the ratio
-/// test, the paper's one-to-one correspondence). Above `kdtree_min_points` special points
-/// a FLANN kd-tree over the fragments finds the candidates (n log n); below, all pairs
-/// are compared, which is faster for the few dozen corners of a typical scan. Fragments of
+/// kept that match in turn direction and corner angle (within kMaxCornerAngleDifference);
+/// each source point keeps its best `candidates_per_point` targets (with one, only mutual
+/// best matches that pass the ratio test, kUniquenessRatio: the paper's one-to-one
+/// correspondence). From kKdTreeMinPoints special points in both scans a FLANN kd-tree over
+/// the fragments finds the candidates (n log n); below, all pairs are compared, which is
+/// faster for the few dozen corners of a typical scan. Fragments of
 /// different lengths (special points of other extraction settings) are always compared over
 /// all pairs, over the shorter fragment.
 
@@ -32,13 +33,23 @@ enum class FragmentDistance {
 
 struct CorrespondenceParams {
   FragmentDistance distance = FragmentDistance::kModulus;
-  int candidates_per_point = 3;         ///< best targets kept per source point
-  double ratio = 0.9;                   ///< with one candidate: best R must be below ratio * second best R
-  double max_angle_difference = 0.35;   ///< rad, corner angles of a pair must agree this well
-  std::size_t kdtree_min_points = 128;  ///< use the kd-tree when both scans have at least this many points
+  int candidates_per_point = 3;  ///< best targets kept per source point
 
   bool validate(std::string *why = nullptr) const;
 };
+
+/// rad (20 deg): the corner angles of a pair must agree this well. A corner seen from two
+/// places keeps its angle, up to the noise of the arms fitted to it.
+constexpr double kMaxCornerAngleDifference = 0.35;
+/// One candidate per point: the best fragment distance R must be below this times the second
+/// best, as in Lowe's ratio test, or the point is left unpaired (the match is not unique).
+constexpr double kUniquenessRatio = 0.9;
+/// special points: from this many in both scans a kd-tree finds the candidates; below, the
+/// search over all pairs is faster. Both find the same pairs.
+constexpr std::size_t kKdTreeMinPoints = 128;
+
+/// How the candidates are searched: by size (kKdTreeMinPoints), or forced either way.
+enum class CandidateSearch { kBySize, kAllPairs, kKdTree };
 
 /// A candidate pair of special points.
 struct Correspondence {
@@ -55,7 +66,8 @@ double fragmentDistanceSquared(const ComplexSequence &source, const ComplexSeque
 /// Candidate pairs between two sets of special points, best first per source point.
 std::vector<Correspondence> findCorrespondences(const std::vector<SpecialPoint> &source,
                                                 const std::vector<SpecialPoint> &target,
-                                                const CorrespondenceParams &params);
+                                                const CorrespondenceParams &params,
+                                                CandidateSearch search = CandidateSearch::kBySize);
 
 /// Working memory of findCorrespondences, kept between calls.
 struct CorrespondenceScratch {
@@ -63,9 +75,9 @@ struct CorrespondenceScratch {
 };
 
 /// The same into `pairs`; `pairs` and `scratch` keep their buffers between calls, so that
-/// below kdtree_min_points nothing is allocated once they are large enough.
+/// below kKdTreeMinPoints nothing is allocated once they are large enough.
 void findCorrespondences(const std::vector<SpecialPoint> &source, const std::vector<SpecialPoint> &target,
                          const CorrespondenceParams &params, std::vector<Correspondence> &pairs,
-                         CorrespondenceScratch &scratch);
+                         CorrespondenceScratch &scratch, CandidateSearch search = CandidateSearch::kBySize);
 
 }  // namespace contour_reg

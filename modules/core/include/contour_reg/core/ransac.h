@@ -8,8 +8,9 @@
 /// early once the chance of having missed a better sample falls below 1 - confidence.
 /// Then refit on all inliers and recount. When pairs carry their own rotation
 /// (arg (N, G) of eq. 14), a sample whose pairs disagree with the rotation of its
-/// hypothesis is rejected before counting; an affine hypothesis that stretches or
-/// shears beyond max_affine_distortion is rejected too. The caller owns the random generator.
+/// hypothesis by more than kMaxRotationDisagreement is rejected before counting; an affine
+/// hypothesis that stretches or shears beyond kMaxAffineDistortion is rejected too. The caller owns the random
+/// generator.
 
 #include <random>
 #include <string>
@@ -28,16 +29,20 @@ enum class TransformModel {
 
 struct RansacParams {
   TransformModel model = TransformModel::kRigid;
-  double inlier_threshold = 0.15;           ///< t, m
-  int max_iterations = 300;                 ///< k
-  double confidence = 0.999;                ///< early stop
-  double max_rotation_disagreement = 0.26;  ///< rad, pair rotation vs hypothesis rotation (<= 0 off)
-  /// Affine: hypotheses whose linear part scales any direction by more than this
-  /// fraction away from 1 are rejected (a LIDAR measures in metres; 3 pairs always fit some affine map).
-  double max_affine_distortion = 0.15;
+  double inlier_threshold = 0.15;  ///< t, m
+  int max_iterations = 300;        ///< k
+  double confidence = 0.999;       ///< early stop
 
   bool validate(std::string *why = nullptr) const;
 };
+
+/// rad (15 deg): a sample's pairs must each turn their fragment (arg (N, G)) within this of
+/// the hypothesis's rotation. A fragment's rotation is good to a few degrees; two pairs placed
+/// crosswise imply a rotation that no pair of theirs agrees with.
+constexpr double kMaxRotationDisagreement = 0.26;
+/// Affine: hypotheses whose linear part scales any direction by more than this fraction away
+/// from 1 are rejected (a LIDAR measures in metres; 3 pairs always fit some affine map).
+constexpr double kMaxAffineDistortion = 0.15;
 
 struct RansacResult {
   bool found = false;

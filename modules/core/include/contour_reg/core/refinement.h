@@ -15,7 +15,7 @@
 /// between the same two sparse raw returns share one sample's weight per sample_step) and
 /// leaves out pairs with a vertex that ends a target contour (an occlusion edge: the source
 /// may see past it). The information matrix also gives the covariance of the estimate, to
-/// which a yaw term that grows with the turn is added (RefinementParams::turn_noise).
+/// which a yaw term that grows with the turn is added (RefinementModel::turn_noise).
 
 #include <functional>
 #include <memory>
@@ -33,12 +33,21 @@ struct RefinementParams {
   int max_iterations = 12;
   double max_distance = 0.3;   ///< m, pairing distance in the first iteration
   double min_distance = 0.08;  ///< m, pairing distance it shrinks to
-  double sample_step = 0.1;    ///< m, spacing of the source samples along the contour
-  double huber = 0.03;         ///< m, Huber threshold of the point-to-line residual
   /// The refinement stops once the pairing distance has shrunk to min_distance and a step
   /// moves the pose by less than stop_translation (m) and turns it by less than stop_rotation (rad).
   double stop_translation = 1e-4;
   double stop_rotation = 1e-5;
+
+  bool validate(std::string *why = nullptr) const;
+};
+
+/// How the refinement samples and weighs the contours and what its covariance counts. It is
+/// part of the method, not a setting: calibrated on simulated rooms and on the real relation
+/// logs (docs/reliability.md) and the same for every LIDAR the project was measured with.
+/// Studies of the covariance change it on a ContourRefiner.
+struct RefinementModel {
+  double sample_step = 0.1;         ///< m, spacing of the source samples along the contour
+  double huber = 0.03;              ///< m, Huber threshold of the point-to-line residual
   double degeneracy_ratio = 0.005;  ///< smallest / largest eigenvalue below this is degenerate: no step along it
   /// The covariance is sigma^2 H^-1 times this. Neighbouring samples share raw points (the
   /// equalization interpolates them), so their residuals are correlated: H counts the samples
@@ -110,7 +119,8 @@ void contourSamples(const ContourFeatures &source, double sample_step, std::vect
 
 /// Refines `initial` (source to target, rigid) on the contours of two scans.
 RefinementResult refineOnContours(const ContourFeatures &source, const ContourFeatures &target,
-                                  const Eigen::Matrix3d &initial, const RefinementParams &params);
+                                  const Eigen::Matrix3d &initial, const RefinementParams &params,
+                                  const RefinementModel &model = {});
 
 /// Refines several starting motions against one target, whose search index it builds once.
 /// It keeps working memory: one refiner serves one thread at a time.
@@ -118,9 +128,12 @@ class ContourRefiner {
  public:
   /// A refiner without a target: every refinement returns its start until setTarget().
   ContourRefiner();
-  ContourRefiner(const ContourFeatures &target, const RefinementParams &params);
+  ContourRefiner(const ContourFeatures &target, const RefinementParams &params, const RefinementModel &model = {});
   /// Indexes a new target, reusing the buffers of the last one's index.
   void setTarget(const ContourFeatures &target);
+  /// Refines with `model` from here on (a study of the covariance; RefinementModel{} by default).
+  void setModel(const RefinementModel &model) { model_ = model; }
+  const RefinementModel &model() const { return model_; }
   ~ContourRefiner();
   ContourRefiner(const ContourRefiner &) = delete;
   ContourRefiner &operator=(const ContourRefiner &) = delete;
@@ -129,7 +142,7 @@ class ContourRefiner {
   /// The same with other settings (a wider pairing distance for a rough start, say).
   RefinementResult refine(const ContourFeatures &source, const Eigen::Matrix3d &initial,
                           const RefinementParams &params) const;
-  /// The same from the source's samples (contourSamples with params.sample_step), for several
+  /// The same from the source's samples (contourSamples with model().sample_step), for several
   /// starting motions of one source. When `arrived` is given, the refinement stops as soon as
   /// it holds for the motion after an iteration: for a caller that asks only whether a start
   /// leads back to a motion it knows, the iterations after the refinement has come close to it
@@ -145,6 +158,7 @@ class ContourRefiner {
   struct Index;
   std::unique_ptr<Index> index_;
   RefinementParams params_;
+  RefinementModel model_;
 };
 
 }  // namespace contour_reg
