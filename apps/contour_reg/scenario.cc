@@ -71,6 +71,11 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
                   "Wheel odometry samples logged per second, between the scans too (Hz, 0: at the scans only)")
       ->capture_default_str()
       ->check(nonNegative());
+  command
+      .add_option("--people", options.people,
+                  "People walking about each path: circles of 0.2-0.25 m at 0.5-1.5 m/s, placed with the seed")
+      ->capture_default_str()
+      ->check(nonNegative());
   addLaserPoseOption(command, options.laser_pose, "where the simulated LIDAR is mounted (default: 0 0 0)");
 }
 
@@ -120,6 +125,7 @@ simulation::RunSettings runSettings(const ScenarioOptions &options, double rate,
   settings.odometry_noise = options.odometry_noise;
   settings.odometry_rate = options.odometry_rate;
   settings.seed = seed;
+  settings.people = options.people;
   settings.laser_pose = options.laser_pose.value_or(io::Pose2D{});
   return settings;
 }

@@ -25,11 +25,12 @@ struct ScenarioOptions {
   double speed = 0.5;
   double odometry_noise = 0.02;
   double odometry_rate = 50.0;
+  int people = 0;                        ///< people walking about each path (simulation/walkers.h)
   std::optional<io::Pose2D> laser_pose;  ///< the LIDAR on the robot; unset: at its centre
 };
 
 /// --map, --resolution, --paths-file, --lidar, --motion, --speed, --odometry-noise, --odometry-rate,
-/// --laser-pose.
+/// --people, --laser-pose.
 void addScenarioOptions(CLI::App &command, ScenarioOptions &options);
 
 struct Scenario {

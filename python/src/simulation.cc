@@ -14,9 +14,9 @@ namespace {
 simulation::SimulatedRun simulate(const std::string &path, double rate, const std::string &map, double resolution,
                                   const std::string &lidar, const std::string &motion, double speed,
                                   double odometry_noise, unsigned seed, const py::object &waypoints,
-                                  const py::object &laser_pose) {
-  if (!(rate > 0.0) || !(speed > 0.0) || !(odometry_noise >= 0.0) || !(resolution > 0.0))
-    throw py::value_error("rate (Hz), speed (m/s) and resolution (m) must be > 0, odometry_noise >= 0");
+                                  const py::object &laser_pose, int people) {
+  if (!(rate > 0.0) || !(speed > 0.0) || !(odometry_noise >= 0.0) || !(resolution > 0.0) || people < 0)
+    throw py::value_error("rate (Hz), speed (m/s) and resolution (m) must be > 0, odometry_noise and people >= 0");
   simulation::RunSettings settings;
   const std::optional<simulation::LidarModel> model = simulation::lidarModelNamed(lidar);
   if (!model) throw py::value_error("unknown lidar '" + lidar + "' (" + listed(simulation::lidarModelNames()) + ")");
@@ -29,6 +29,7 @@ simulation::SimulatedRun simulate(const std::string &path, double rate, const st
   settings.speed = speed;
   settings.odometry_noise = odometry_noise;
   settings.seed = seed;
+  settings.people = people;
   settings.laser_pose = poseFrom(laser_pose, "laser_pose").value_or(io::Pose2D{});
 
   simulation::World world;
@@ -71,13 +72,14 @@ void bindSimulation(py::module_ &m) {
   m.def("simulate", &simulate, py::arg("path") = "L", py::arg("rate") = 2.0, py::arg("map") = "office",
         py::arg("resolution") = 0.1, py::arg("lidar") = "hokuyo", py::arg("motion") = "stop-and-go",
         py::arg("speed") = 0.5, py::arg("odometry_noise") = 0.02, py::arg("seed") = 1,
-        py::arg("waypoints") = py::none(), py::arg("laser_pose") = py::none(),
+        py::arg("waypoints") = py::none(), py::arg("laser_pose") = py::none(), py::arg("people") = 0,
         "Drives a robot with a LIDAR (hokuyo or ydlidar) at `rate` Hz and `speed` m/s along a path (S, L, Y, O, "
         "line in the built-in office; line in the built-in door row, map 'doors'; S, L, Y, O placed automatically in a "
         "map file, map_server YAML or a PGM/PNG "
         "of `resolution` m per pixel; or `waypoints`, N x 2 in map metres). motion: stop-and-go (the paper's) or "
         "continuous (every beam from where the robot is when it fires). laser_pose: (x m, y m, yaw rad) of the LIDAR "
-        "on the robot (None: at its centre). Returns a SimulatedRun.");
+        "on the robot (None: at its centre). people: how many walk about the path (circles of 0.2-0.25 m at 0.5-1.5 "
+        "m/s, placed with the seed). Returns a SimulatedRun.");
 }
 
 }  // namespace contour_reg::python

@@ -221,3 +221,18 @@ def test_an_ambiguous_registration_gives_the_motions_that_fit_as_well(s_run):
         assert abs(np.remainder(yaw - np.pi / 4 + np.pi / 4, np.pi / 2) - np.pi / 4) < 0.02, yaws
     assert abs(np.remainder(yaws[0] - yaws[1] + np.pi, 2 * np.pi) - np.pi) > 1.0, yaws  # distinct turns
     assert cr.register(s_run.log[2], s_run.log[0]).alternatives == []  # converged: none
+
+
+def test_people_walking_about_never_make_a_converged_answer_wrong():
+    # Ten people about an S-bend, scans 1 m apart: some pairs are declined, none is answered wrong.
+    run = cr.simulate(path="S", rate=1.0, speed=1.0, seed=3, people=10)
+    answered = 0
+    for k in range(len(run.log) - 1):
+        result = cr.register(run.log[k + 1], run.log[k])
+        if result.converged:
+            answered += 1
+            error_m, error_rad = pose_error(result.pose, true_motion(run, k, k + 1))
+            assert error_m < 0.1 and error_rad < np.radians(2.0), (k, result)
+    assert answered >= 0.8 * (len(run.log) - 1)
+    with pytest.raises(ValueError, match="people"):
+        cr.simulate(people=-1)

@@ -6,6 +6,7 @@
 
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/simulation/paths.h"
+#include "contour_reg/simulation/walkers.h"
 
 namespace contour_reg::simulation {
 
@@ -44,6 +45,8 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
   // The LIDAR's pose when the robot is at `robot`.
   const Eigen::Isometry2d mounting(io::toMatrix(settings.laser_pose));
   auto sensorAt = [&](const Eigen::Isometry2d &robot) -> Eigen::Isometry2d { return robot * mounting; };
+  // The people walk on a generator of their own: a run without them keeps its noise.
+  Walkers walkers(world, waypoints, settings.people, settings.seed + 7919u);
   Eigen::Isometry2d previous_truth = poseAlongPath(waypoints, 0.0, settings.turn_radius);
   Eigen::Isometry2d odometry = previous_truth;
   for (std::size_t k = 0; k < scans; ++k) {
@@ -51,13 +54,16 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
     const double s = std::min(static_cast<double>(k) * spacing, run.path_length);
     const Eigen::Isometry2d truth = poseAlongPath(waypoints, s, settings.turn_radius);
     io::LogEntry entry;
+    walkers.advanceTo(stamp);
+    const World seen = walkers.people().empty() ? World() : walkers.around(sensorAt(truth).translation());
+    const World &scene = walkers.people().empty() ? world : seen;
     if (settings.motion == Motion::kStopAndGo || k + 1 == scans) {
-      entry.scan = simulateScan(world, sensorAt(truth), lidar, rng);
+      entry.scan = simulateScan(scene, sensorAt(truth), lidar, rng);
     } else {
       // The LIDAR turns once per period; beam n fires at its bearing's share of a turn.
       const double beam_time = beamInterval(period, lidar.angleIncrement());
       entry.scan = simulateScan(
-          world,
+          scene,
           [&](std::size_t n) {
             return sensorAt(poseAlongPath(waypoints, s + settings.speed * beam_time * static_cast<double>(n),
                                           settings.turn_radius));

@@ -36,6 +36,7 @@ struct RunSettings {
   double odometry_rate = 50.0;   ///< Hz, wheel odometry samples logged (ScanLog::wheel_odometry); 0: none
   unsigned seed = 1;             ///< fixes range noise, dropout and odometry noise
   io::Pose2D laser_pose;         ///< the LIDAR's pose on the robot (base_link -> laser)
+  int people = 0;                ///< people walking about the path (walkers.h), placed with `seed`
 };
 
 struct SimulatedRun {
