@@ -44,8 +44,9 @@ constexpr double kMaxCornerAngleDifference = 0.35;
 /// One candidate per point: the best fragment distance R must be below this times the second
 /// best, as in Lowe's ratio test, or the point is left unpaired (the match is not unique).
 constexpr double kUniquenessRatio = 0.9;
-/// special points: from this many in both scans a kd-tree finds the candidates; below, the
-/// search over all pairs is faster. Both find the same pairs.
+/// special points: from this many in both scans a kd-tree over the fragments proposes each
+/// source point's 4 x candidates_per_point + 4 nearest targets; below, comparing all pairs is
+/// faster.
 constexpr std::size_t kKdTreeMinPoints = 128;
 
 /// How the candidates are searched: by size (kKdTreeMinPoints), or forced either way.

@@ -9,8 +9,8 @@
 /// Then refit on all inliers and recount. When pairs carry their own rotation
 /// (arg (N, G) of eq. 14), a sample whose pairs disagree with the rotation of its
 /// hypothesis by more than kMaxRotationDisagreement is rejected before counting; an affine
-/// hypothesis that stretches or shears beyond kMaxAffineDistortion is rejected too. The caller owns the random
-/// generator.
+/// hypothesis that stretches or shears beyond kMaxAffineDistortion is rejected too. The
+/// caller owns the random generator.
 
 #include <random>
 #include <string>
