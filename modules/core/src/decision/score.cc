@@ -28,13 +28,19 @@ void Scorer::prepareViews() {
   views_ready_ = true;
 }
 
-double Scorer::contradictedReturns(const Eigen::Matrix3d &motion) {
-  if (!params_.enabled) return 0.0;
+void Scorer::prepareReturnViews() {
+  if (returns_views_ready_) return;
   if (target_.extraction == 0 || buffers_.returns_viewed_target != target_.extraction) {
     buffers_.target_returns_view.assign(target_.returns);
     buffers_.returns_viewed_target = target_.extraction;
   }
   buffers_.source_returns_view.assign(source_.returns);
+  returns_views_ready_ = true;
+}
+
+double Scorer::contradictedReturns(const Eigen::Matrix3d &motion) {
+  if (!params_.enabled) return 0.0;
+  prepareReturnViews();
   return contradictedReturnShare(source_.returns, buffers_.target_returns_view, target_.returns,
                                  buffers_.source_returns_view, motion, params_.margin);
 }

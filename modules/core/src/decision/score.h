@@ -63,8 +63,9 @@ class Scorer {
   const ContourFeatures &source_, &target_;
   const FreeSpaceParams &params_;
   RegistrationBuffers &buffers_;
-  bool views_ready_ = false;
+  bool views_ready_ = false, returns_views_ready_ = false;
   void prepareViews();
+  void prepareReturnViews();  // the views of all returns, for contradictedReturns
 };
 
 }  // namespace contour_reg::decision
