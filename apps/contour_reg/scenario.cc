@@ -56,7 +56,9 @@ void addScenarioOptions(CLI::App &command, ScenarioOptions &options) {
       .add_option("--paths-file", options.paths_file,
                   "Paths in map metres, one per line: NAME x0 y0 x1 y1 ... (default: S, L, Y, O placed in the map)")
       ->check(CLI::ExistingFile);
-  command.add_option("--lidar", options.lidar, "hokuyo (UTM-30LX-like) or ydlidar (X4-like)")
+  command
+      .add_option("--lidar", options.lidar,
+                  "hokuyo (UTM-30LX-like), ydlidar (X4-like) or sick (LMS200-like: 181 beams, 1 deg)")
       ->check(CLI::IsMember(simulation::lidarModelNames()))
       ->capture_default_str();
   command.add_option("--motion", options.motion, "stop-and-go (scans at rest) or continuous (distorted scans)")

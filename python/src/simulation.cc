@@ -73,7 +73,7 @@ void bindSimulation(py::module_ &m) {
         py::arg("resolution") = 0.1, py::arg("lidar") = "hokuyo", py::arg("motion") = "stop-and-go",
         py::arg("speed") = 0.5, py::arg("odometry_noise") = 0.02, py::arg("seed") = 1,
         py::arg("waypoints") = py::none(), py::arg("laser_pose") = py::none(), py::arg("people") = 0,
-        "Drives a robot with a LIDAR (hokuyo or ydlidar) at `rate` Hz and `speed` m/s along a path (S, L, Y, O, "
+        "Drives a robot with a LIDAR (hokuyo, ydlidar or sick) at `rate` Hz and `speed` m/s along a path (S, L, Y, O, "
         "line in the built-in office; line in the built-in door row, map 'doors'; S, L, Y, O placed automatically in a "
         "map file, map_server YAML or a PGM/PNG "
         "of `resolution` m per pixel; or `waypoints`, N x 2 in map metres). motion: stop-and-go (the paper's) or "

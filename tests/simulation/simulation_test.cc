@@ -121,6 +121,28 @@ TEST(Lidar, NoiseAndDropoutFollowTheModel) {
   EXPECT_NEAR(std::sqrt(variance), 0.02, 0.001);
 }
 
+// A SICK LMS200 reports whole centimetres, one beam per degree over 180 deg: so does its model.
+TEST(Lidar, SickRangesAreWholeCentimetresOneDegreeApart) {
+  World wall;
+  wall.addSegment({5.0, -100.0}, {5.0, 100.0});
+  const LidarModel model = LidarModel::sickLms200();
+  std::mt19937 rng(7);
+  const LaserScan scan = simulateScan(wall, Eigen::Isometry2d::Identity(), model, rng);
+  ASSERT_EQ(scan.ranges.size(), 181u);
+  EXPECT_NEAR(scan.angle_increment, M_PI / 180.0, 1e-12);
+  EXPECT_NEAR(scan.angle_min, -M_PI / 2.0, 1e-12);
+  int finite = 0, off_true_range = 0;
+  for (std::size_t n = 0; n < scan.ranges.size(); ++n) {
+    if (!std::isfinite(scan.ranges[n])) continue;
+    ++finite;
+    EXPECT_NEAR(100.0 * scan.ranges[n], std::round(100.0 * scan.ranges[n]), 1e-3) << n;
+    off_true_range += std::abs(scan.ranges[n] - 5.0 / std::cos(scan.bearing(n))) > 0.005;
+  }
+  // The beams that meet the wall within 80 m: within about 86.4 deg of straight ahead.
+  EXPECT_EQ(finite, 2 * 86 + 1);
+  EXPECT_GT(off_true_range, finite / 2);  // noise of 1 cm, not just the rounding
+}
+
 TEST(Paths, ShapesHaveTheirTurnsAndLengths) {
   EXPECT_NEAR(pathLength(officePath("L")), 24.4, 1e-9);
   EXPECT_EQ(officePath("L").size(), 3u);  // one turn
@@ -263,11 +285,12 @@ TEST(SimulatedRun, ContinuousMotionDistortsTheScan) {
 TEST(SimulatedRun, LidarModelsAndMotionsAreKnownByName) {
   EXPECT_EQ(lidarModelNamed("hokuyo")->beams, LidarModel::hokuyoUtm30lx().beams);
   EXPECT_EQ(lidarModelNamed("ydlidar")->beams, LidarModel::ydlidarX4().beams);
-  EXPECT_FALSE(lidarModelNamed("sick").has_value());
+  EXPECT_EQ(lidarModelNamed("sick")->beams, LidarModel::sickLms200().beams);
+  EXPECT_FALSE(lidarModelNamed("velodyne").has_value());
   EXPECT_EQ(motionNamed("stop-and-go"), Motion::kStopAndGo);
   EXPECT_EQ(motionNamed("continuous"), Motion::kContinuous);
   EXPECT_FALSE(motionNamed("moving").has_value());
-  EXPECT_EQ(lidarModelNames().size(), 2u);
+  EXPECT_EQ(lidarModelNames().size(), 3u);
   EXPECT_EQ(motionNames().size(), 2u);
 }
 

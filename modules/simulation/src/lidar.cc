@@ -24,14 +24,27 @@ LidarModel LidarModel::ydlidarX4() {
   return model;
 }
 
+LidarModel LidarModel::sickLms200() {
+  LidarModel model;
+  model.name = "sick-lms200";
+  model.beams = 181;
+  model.field_of_view = M_PI;  // 1 deg steps
+  model.range_min = 0.0;
+  model.range_max = 80.0;
+  model.range_noise = 0.01;
+  model.range_resolution = 0.01;
+  return model;
+}
+
 const std::vector<std::string> &lidarModelNames() {
-  static const std::vector<std::string> names{"hokuyo", "ydlidar"};
+  static const std::vector<std::string> names{"hokuyo", "ydlidar", "sick"};
   return names;
 }
 
 std::optional<LidarModel> lidarModelNamed(const std::string &name) {
   if (name == "hokuyo") return LidarModel::hokuyoUtm30lx();
   if (name == "ydlidar") return LidarModel::ydlidarX4();
+  if (name == "sick") return LidarModel::sickLms200();
   return std::nullopt;
 }
 
@@ -57,6 +70,8 @@ LaserScan simulateScan(const World &world, const std::function<Eigen::Isometry2d
     double range = world.castRay(pose.translation(), {std::cos(angle), std::sin(angle)});
     if (model.range_noise > 0.0 && std::isfinite(range)) range += noise(rng);
     if (model.dropout > 0.0 && uniform(rng) < model.dropout) range = std::numeric_limits<double>::infinity();
+    if (model.range_resolution > 0.0 && std::isfinite(range))
+      range = model.range_resolution * std::round(range / model.range_resolution);
     const bool valid = std::isfinite(range) && range >= model.range_min && range < model.range_max;
     scan.ranges[n] = valid ? static_cast<float>(range) : std::numeric_limits<float>::quiet_NaN();
   }

@@ -23,6 +23,7 @@ struct LidarModel {
   double range_max = 30.0;                      ///< m; beyond it a beam returns no echo
   double range_noise = 0.01;                    ///< m, standard deviation of Gaussian range noise
   double dropout = 0.0;                         ///< probability that a beam returns no echo
+  double range_resolution = 0.0;                ///< m, a range is reported rounded to this step (0: exactly)
 
   double angleIncrement() const { return beams > 1 ? field_of_view / (beams - 1) : 0.0; }
 
@@ -30,10 +31,13 @@ struct LidarModel {
   static LidarModel hokuyoUtm30lx();
   /// YDLidar X4-like: 720 beams over 360 deg, 10 m, 2 cm noise, 1 % dropout.
   static LidarModel ydlidarX4();
+  /// SICK LMS200-like, as in the CARMEN logs: 181 beams over 180 deg (1 deg apart), 80 m,
+  /// 1 cm noise, ranges reported in whole centimetres.
+  static LidarModel sickLms200();
 };
 
 /// The LIDAR models the command line and Python name: hokuyo (hokuyoUtm30lx), ydlidar
-/// (ydlidarX4); the model of a name, none for another name.
+/// (ydlidarX4), sick (sickLms200); the model of a name, none for another name.
 const std::vector<std::string> &lidarModelNames();
 std::optional<LidarModel> lidarModelNamed(const std::string &name);
 
