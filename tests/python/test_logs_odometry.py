@@ -167,9 +167,23 @@ def test_the_door_row_has_its_line():
         cr.simulate(path="L", map="doors")
 
 
+def test_a_sick_lms200_run_is_followed_within_a_percent():
+    run = cr.simulate(path="S", lidar="sick", rate=2)
+    scan = run.log[0]
+    assert len(scan.ranges) == 181
+    assert scan.angle_increment == pytest.approx(np.pi / 180)
+    finite = np.asarray(scan.ranges)[np.isfinite(scan.ranges)]
+    np.testing.assert_allclose(finite * 100, np.round(finite * 100), atol=1e-3)  # whole centimetres
+    odometry = cr.odometry(run.log)
+    assert odometry.failures == 0
+    assert cr.evaluate(odometry.trajectory, run.ground_truth)["end_point_percent"] < 1.0
+
+
 def test_bad_simulation_and_odometry_arguments_raise(bundled_log):
     with pytest.raises(ValueError, match="unknown path"):
         cr.simulate(path="Z")
+    with pytest.raises(ValueError, match="unknown lidar"):
+        cr.simulate(lidar="velodyne")
     with pytest.raises(ValueError, match="rate"):
         cr.simulate(rate=0)
     with pytest.raises(ValueError, match="unknown guess"):
