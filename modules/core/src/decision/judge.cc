@@ -91,8 +91,7 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
   from_start.max_distance = params.refinement.max_distance + 0.5 * kSweepStep;
   RefinementParams screening = from_start;
   screening.max_iterations = kScreeningIterations;
-  const std::vector<Eigen::Vector2d> &sparse = samplesOf(scorer.source(), 2.0 * buffers.refiner.model().sample_step,
-                                                         buffers.sparse_samples, buffers.sparse_sampled);
+  const std::vector<Eigen::Vector2d> &sparse = screeningSamplesOf(scorer.source(), buffers);
   // A start that has come back near the best leads to the best: stop there.
   const auto near_best = [&](const Eigen::Matrix3d &m) {
     return motionDistance(best.transform, m) <= kDistinctMotions / 4;
@@ -148,10 +147,9 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const C
   // that the motion it scores is refined as fully as the best.
   const Eigen::Matrix3d &best = found.best.refined.transform;
   const auto near_best = [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; };
-  samplesOf(scorer.source(), 2.0 * buffers.refiner.model().sample_step, buffers.sparse_samples, buffers.sparse_sampled);
-  const RefinementResult quick =
-      buffers.refiner.refine(buffers.sparse_samples, guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(),
-                             widened(params, checks), near_best);
+  const RefinementResult quick = buffers.refiner.refine(screeningSamplesOf(scorer.source(), buffers),
+                                                        guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(),
+                                                        widened(params, checks), near_best);
   if (motionDistance(best, quick.transform) <= kDistinctMotions) return true;
   RefinementParams polish = params.refinement;  // the sparse refinement ended at the smallest pairing distance
   polish.max_distance = polish.min_distance;

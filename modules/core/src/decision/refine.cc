@@ -25,17 +25,20 @@ const std::vector<Eigen::Vector2d> &samplesOf(const ContourFeatures &source, dou
   return samples;
 }
 
+const std::vector<Eigen::Vector2d> &screeningSamplesOf(const ContourFeatures &source, RegistrationBuffers &buffers) {
+  return samplesOf(source, 2.0 * buffers.refiner.model().sample_step, buffers.sparse_samples, buffers.sparse_sampled);
+}
+
 const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &source, const ContourFeatures &target,
                                                       std::vector<RefinementStart> &starts,
                                                       RegistrationBuffers &buffers) {
   const ContourRefiner &refiner = refinerFor(target, buffers);
   // The source is sampled once for the full refinements, at the refiner's spacing, and once,
   // twice as sparse, for the screening.
-  const double step = refiner.model().sample_step;
-  const std::vector<Eigen::Vector2d> &samples = samplesOf(source, step, buffers.samples, buffers.sampled);
+  const std::vector<Eigen::Vector2d> &samples =
+      samplesOf(source, refiner.model().sample_step, buffers.samples, buffers.sampled);
   if (starts.size() > kRefinedInFull) {
-    const std::vector<Eigen::Vector2d> &sparse =
-        samplesOf(source, 2.0 * step, buffers.sparse_samples, buffers.sparse_sampled);
+    const std::vector<Eigen::Vector2d> &sparse = screeningSamplesOf(source, buffers);
     struct Screened {
       double overlap;
       std::size_t start;

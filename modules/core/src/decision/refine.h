@@ -31,6 +31,10 @@ const std::vector<Eigen::Vector2d> &samplesOf(const ContourFeatures &source, dou
                                               std::vector<Eigen::Vector2d> &samples,
                                               std::pair<std::uint64_t, double> &sampled);
 
+/// The source samples twice as sparse as the refiner's (the refiner of `buffers` with its
+/// model's sample_step), kept in buffers.sparse_samples: what the screening passes refine.
+const std::vector<Eigen::Vector2d> &screeningSamplesOf(const ContourFeatures &source, RegistrationBuffers &buffers);
+
 /// Refines the most promising of `starts` (kept in `starts`) in full into buffers.refined, in
 /// the order of `starts`; buffers.samples then holds the source samples they were refined on.
 const std::vector<RefinementResult> &refineHypotheses(const ContourFeatures &source, const ContourFeatures &target,

@@ -18,22 +18,29 @@ std::pair<FreeSpaceEvidence, FreeSpaceEvidence> Scorer::evidenceEachWay(const Ei
           freeSpaceEvidence(target_, buffers_.source_view, rigidInverse(motion), params_)};
 }
 
+namespace {
+
+// Builds `view` of the target's `seen` (its contours or its returns), unless `viewed` says it
+// already shows this extraction of the target (extraction 0: never kept).
+template <class Seen>
+void viewTarget(const ContourFeatures &target, const Seen &seen, RangeView &view, std::uint64_t &viewed) {
+  if (target.extraction != 0 && viewed == target.extraction) return;
+  view.assign(seen);
+  viewed = target.extraction;
+}
+
+}  // namespace
+
 void Scorer::prepareViews() {
   if (views_ready_) return;
-  if (target_.extraction == 0 || buffers_.viewed_target != target_.extraction) {
-    buffers_.target_view.assign(target_);
-    buffers_.viewed_target = target_.extraction;
-  }
+  viewTarget(target_, target_, buffers_.target_view, buffers_.viewed_target);
   buffers_.source_view.assign(source_);
   views_ready_ = true;
 }
 
 void Scorer::prepareReturnViews() {
   if (returns_views_ready_) return;
-  if (target_.extraction == 0 || buffers_.returns_viewed_target != target_.extraction) {
-    buffers_.target_returns_view.assign(target_.returns);
-    buffers_.returns_viewed_target = target_.extraction;
-  }
+  viewTarget(target_, target_.returns, buffers_.target_returns_view, buffers_.returns_viewed_target);
   buffers_.source_returns_view.assign(source_.returns);
   returns_views_ready_ = true;
 }
