@@ -48,12 +48,34 @@ TEST(FreeSpace, APersonWalkingThroughDoesNotRefuteTheRightMotion) {
   const ContourFeatures target = featuresFrom(room, target_pose, 1), source = featuresFrom(with_person, source_pose, 2);
   const Eigen::Matrix3d truth = motionBetween(target_pose, source_pose);
 
-  FreeSpaceParams every_run;
-  every_run.min_run_length = 0.0;
+  FreeSpaceParams every_object;
+  every_object.min_object_length = 0.0;
   // The person's outline lies where the target saw free space ...
-  EXPECT_GT(evidenceAt(source, target, truth, every_run).contradicted_length, 0.2);
-  // ... but a stretch that short is no evidence against the motion.
+  EXPECT_GT(evidenceAt(source, target, truth, every_object).contradicted_length, 0.2);
+  // ... but an object that small may have moved between the scans: no evidence against the motion.
   EXPECT_EQ(evidenceAt(source, target, truth).contradicted_length, 0.0);
+}
+
+// A wall seen through a gap in a nearer one: a wrong motion puts most of the source's near
+// wall behind the target's (hidden, no evidence) and only the stretch in line with the gap in
+// front of the far wall the target saw through it. That stretch is short, but it lies on a
+// wall, not on an object that may have moved: it counts.
+TEST(FreeSpace, AShortStretchOfAWallInFreeSpaceCounts) {
+  simulation::World world;
+  world.addSegment({6.0, -6.0}, {6.0, 6.0});    // the far wall
+  world.addSegment({3.0, -3.0}, {3.0, -0.12});  // the near wall, with a gap 0.24 m wide ...
+  world.addSegment({3.0, 0.12}, {3.0, 3.0});    // ... straight ahead
+  const Eigen::Isometry2d pose = test::pose2d(0, 0, 0);
+  const ContourFeatures target = featuresFrom(world, pose, 1), source = featuresFrom(world, pose, 2);
+  const RangeView target_view(target);
+  const Eigen::Matrix3d wrong = rigidTransform(1.0, 0.5, 0.0);
+
+  const FreeSpaceEvidence evidence = freeSpaceEvidence(source, target_view, wrong, FreeSpaceParams{});
+  EXPECT_GT(evidence.contradicted_length, 0.2);  // the near wall in line with the gap, moved 1 m back
+  EXPECT_LT(evidence.contradicted_length, 0.5);  // no more: the rest lies behind the target's near wall
+  EXPECT_EQ(evidence.contradicted_runs, 1);
+  EXPECT_EQ(freeSpaceEvidence(source, target_view, Eigen::Matrix3d::Identity(), FreeSpaceParams{}).contradicted_length,
+            0.0);
 }
 
 // A wall in line with the source's beam: the source's beams pass along it, not through it, and

@@ -16,8 +16,10 @@
 /// along a beam that meets the contour at an angle a it is margin / sin(a), so a wall in line with the beam (the beam
 /// passed along it, not through it) never contradicts. Bearings where the target
 /// has no valid return (no echo, a gap between segments) give no evidence. A moving person, a door swung open between
-/// the scans contradict a right motion too, but only over a short stretch: contradicted runs shorter than
-/// `min_run_length` along the contour are not counted.
+/// the scans contradict a right motion too, but they are small objects of their own: the contradictions of a contour
+/// that spans less than `min_object_length` are not counted. On a larger contour, a wall, every contradicted point
+/// counts, however short the stretch: a wrong motion may put most of a wall behind what the other scan saw and only
+/// the stretch in line with a gap in front of it.
 
 #include <vector>
 
@@ -38,9 +40,10 @@ struct FreeSpaceParams {
   /// moves a point (a turn of 1 degree moves a point 30 m away by 0.5 m), below the offset of a
   /// distinct motion.
   double margin = 0.5;
-  /// m, contradicted stretches of contour shorter than this are not counted: a walking
-  /// person (about 0.5 m across at the height of a LIDAR), a chair moved between the scans.
-  double min_run_length = 0.5;
+  /// m, contours that span less than this (the farthest of their points from their first)
+  /// may be objects that moved between the scans (a walking person, about 0.5 m across at the
+  /// height of a LIDAR, a chair, a door leaf): their contradictions are not counted.
+  double min_object_length = 1.0;
 
   bool validate(std::string *why = nullptr) const;
 };
@@ -48,8 +51,8 @@ struct FreeSpaceParams {
 /// How much of one scan's contour a motion puts in the other scan's free space.
 struct FreeSpaceEvidence {
   double tested_length = 0.0;        ///< m of contour that fell inside the other scan's view
-  double contradicted_length = 0.0;  ///< m of contour in runs of at least min_run_length in its free space
-  int contradicted_runs = 0;         ///< how many such runs
+  double contradicted_length = 0.0;  ///< m of contour in its free space, of contours min_object_length or larger
+  int contradicted_runs = 0;         ///< in how many stretches
   /// The contradicted share of the tested contour (0 when nothing was tested).
   double fraction() const { return tested_length > 0.0 ? contradicted_length / tested_length : 0.0; }
   FreeSpaceEvidence &operator+=(const FreeSpaceEvidence &other);
@@ -105,7 +108,7 @@ FreeSpaceEvidence mutualFreeSpaceEvidence(const ContourFeatures &source, const R
 /// non-finite points skipped) that fall inside the other scan's view, the share that `motion`
 /// (source to target) puts more than `margin` m in front of the other's measured range along
 /// its beam; 0 when none falls inside. Each view is RangeView::assign() of the other scan's
-/// returns. No run length and no contour: a stand of table legs or a row of posts counts as
+/// returns. No object size and no contour: a stand of table legs or a row of posts counts as
 /// much as a wall.
 double contradictedReturnShare(const ComplexSequence &source_returns, const RangeView &target_view,
                                const ComplexSequence &target_returns, const RangeView &source_view,
