@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include "contour_reg/core/transform_estimation.h"
 #include "validation.h"
@@ -118,16 +119,22 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
   const Eigen::Vector2d translation = motion.topRightCorner<2, 1>();
   for (const EqualizedContour &contour : source.contours) {
     const ComplexSequence &points = contour.vertices;
-    if (points.empty()) continue;
     // The contour's vertices about kSampleStep apart.
     const std::size_t stride =
         contour.step > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(kSampleStep / contour.step)) : 1;
     const double sample_length = static_cast<double>(stride) * contour.step;
     // A small object may have moved between the scans: its contradictions do not count. Its
-    // size: the farthest of its points from its first.
-    double extent = 0.0;
-    for (const Complex &p : points) extent = std::max(extent, magnitude(p - points.front()));
-    const bool may_have_moved = extent < params.min_object_length;
+    // size (the farthest of its points from its first) is measured only for a contour with a
+    // point seen through: most contours have none.
+    std::optional<bool> small_object;
+    const auto mayHaveMoved = [&] {
+      if (!small_object) {
+        double extent = 0.0;
+        for (const Complex &p : points) extent = std::max(extent, magnitude(p - points.front()));
+        small_object = extent < params.min_object_length;
+      }
+      return *small_object;
+    };
     bool in_run = false;
     // The margin holds across the surface: along a beam that meets the contour at a glancing
     // angle, a small offset of the contour moves the crossing far along the beam. A sine below
@@ -152,7 +159,7 @@ FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeVi
       // Clearly in front of the measured range: by the margin along the beam, then across the contour.
       const double range = moved.norm();
       const bool seen_through = range < measured - params.margin && range < measured - marginAlongBeam(n, moved, range);
-      if (seen_through && !may_have_moved) {
+      if (seen_through && !mayHaveMoved()) {
         evidence.contradicted_length += sample_length;
         if (!in_run) ++evidence.contradicted_runs;
         if (contradicted) contradicted->push_back(moved);
