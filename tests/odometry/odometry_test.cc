@@ -131,6 +131,28 @@ TEST(Odometry, DeskewingScansTakenWhileMovingCutsTheEndPointError) {
   EXPECT_LT(errors.deskewed, 0.5 * errors.raw);
 }
 
+// Without wheel odometry a scan is first deskewed by the last motion. Where a turn ends within
+// the interval, that bends a scan taken straight; the registration is tried again with the scan
+// as taken. The office's L path at 5 Hz: every registration converges, each within 10 cm / 2 deg.
+TEST(Odometry, WithoutWheelsAScanBentByAnEndedTurnIsRegisteredAsTaken) {
+  simulation::RunSettings settings;
+  settings.rate = 5.0;
+  settings.motion = simulation::Motion::kContinuous;
+  simulation::SimulatedRun run =
+      simulation::simulateRun(simulation::makeOfficeWorld(), simulation::officePath("L"), settings);
+  run.log.wheel_odometry.clear();
+  for (io::LogEntry &entry : run.log.entries) entry.odometry.reset();
+  auto matcher = makeScanMatcher("contour");
+  const OdometryRun odometry = runOdometry(run.log, *matcher);
+  EXPECT_EQ(odometry.stats.failures, 0u);
+  for (const OdometryStep &step : odometry.steps) {
+    if (!step.converged) continue;
+    const io::Pose2D truth = io::between(run.ground_truth[step.reference].pose, run.ground_truth[step.scan].pose);
+    EXPECT_LT(std::hypot(step.motion.x - truth.x, step.motion.y - truth.y), 0.1) << "step " << step.scan;
+    EXPECT_LT(std::abs(step.motion.yaw - truth.yaw), 2.0 * M_PI / 180) << "step " << step.scan;
+  }
+}
+
 // With wheel odometry each scan is deskewed by the odometry over its own sweep, which holds in
 // the S path's turns at 2 Hz, where the previous motion is a poor guess of the next.
 TEST(Odometry, DeskewingByWheelOdometryHoldsThroughTurns) {

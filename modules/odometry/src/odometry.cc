@@ -238,6 +238,9 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   run.trajectory.push_back({entries[0].scan.stamp, poses[0]});
   io::Pose2D velocity_motion{};  // last scan-to-scan motion
   double velocity_dt = 0.0;
+  // Without wheel odometry, a scan is first deskewed by the last motion; not after a scan that
+  // registered as taken, which says the motion changed (a turn or a drive ended).
+  bool last_scan_as_taken = false;
   PredictionRecord wheel_record, velocity_record;  // the two predictions' errors on the converged steps
   std::size_t keyframe = 0;
   // Each scan's motion over its sweep, fixed when the scan is first matched; the first scan's
@@ -280,15 +283,16 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     const bool by_wheel = wheel_sweep.has_value();
     if (by_wheel)
       sweeps[k] = *wheel_sweep;
-    else if (deskewing && velocity_dt > 1e-3)
+    else if (deskewing && velocity_dt > 1e-3 && !last_scan_as_taken)
       sweeps[k] = twistOver(velocity_motion, velocity_dt);
     MatchResult match = matcher.match(target, entries[k].scan, toMatrix(guess), target_sweep, sweeps[k]);
     // A failure gets a second try from the constant-velocity prediction when that is a
     // different guess (a turn or a drive that goes on, where the first guess was "no motion").
     const io::Pose2D velocity_guess = between(poses[reference], by_velocity);
     const io::Pose2D guess_gap = between(guess, velocity_guess);
-    if (!match.converged && options.retry_with_velocity && velocity_scale > 0.0 &&
-        (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05)) {
+    const bool velocity_differs = options.retry_with_velocity && velocity_scale > 0.0 &&
+                                  (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05);
+    if (!match.converged && velocity_differs) {
       const MatchResult retry =
           matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, sweeps[k]);
       const double first_ms = match.milliseconds;
@@ -298,16 +302,35 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       }
       match.milliseconds = first_ms + retry.milliseconds;
     }
-    // Without wheel odometry: deskewed again with the motion this registration found over the
-    // interval, rather than the last one.
-    if (deskewing && !by_wheel && match.converged && dt > 1e-3 && reference == k - 1) {
+    // Without wheel odometry the scan was deskewed by the last motion; where a turn or a drive
+    // ended within the interval, that bends a scan taken straight. A failure gets one more try
+    // with the scan as taken, and the scan stays so.
+    bool as_taken = false;
+    if (!match.converged && deskewing && !by_wheel && !sweeps[k].isZero()) {
+      const double failed_ms = match.milliseconds;
+      MatchResult taken = matcher.match(target, entries[k].scan, toMatrix(guess), target_sweep, SweepMotion{});
+      if (!taken.converged && velocity_differs) {
+        const double guess_ms = taken.milliseconds;
+        taken = matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, SweepMotion{});
+        taken.milliseconds += guess_ms;
+      }
+      if (taken.converged) {
+        match = taken;
+        sweeps[k] = SweepMotion{};
+        as_taken = true;
+        ++run.stats.recovered_by_retry;
+      }
+      match.milliseconds = failed_ms + taken.milliseconds;
+    }
+    // Otherwise deskewed again with the motion this registration found over the interval,
+    // rather than the last one. That motion is the scan's sweep from here on, as the next
+    // registration's target, even where this second registration fails (on a bent target).
+    if (deskewing && !by_wheel && !as_taken && match.converged && dt > 1e-3 && reference == k - 1) {
       const Twist2D better = twistOver(toPose(match.transform), dt);
       const MatchResult again = matcher.match(target, entries[k].scan, match.transform, target_sweep, better);
       const double both_ms = match.milliseconds + again.milliseconds;
-      if (again.converged) {
-        match = again;
-        sweeps[k] = better;
-      }
+      if (again.converged) match = again;
+      sweeps[k] = better;
       match.milliseconds = both_ms;
     }
     // Repeated structure (a row of doors) leaves distinct motions that fit the scans as well;
@@ -367,6 +390,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
                          match.converged ? match.covariance : Eigen::Matrix3d::Zero()});
     velocity_motion = between(previous, pose);
     velocity_dt = dt;
+    last_scan_as_taken = as_taken;
 
     if (options.keyframes || mapping) {
       const io::Pose2D from_keyframe = between(poses[keyframe], pose);

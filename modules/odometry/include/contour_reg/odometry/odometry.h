@@ -84,9 +84,11 @@ struct OdometryOptions {
 
 struct OdometryStats {
   std::size_t registrations = 0;
-  std::size_t failures = 0;            ///< not converged (degenerate ones included)
-  std::size_t degenerate = 0;          ///< of the failures, those whose status is "degenerate"
-  std::size_t recovered_by_retry = 0;  ///< registrations that failed from the guess and converged on the retry
+  std::size_t failures = 0;    ///< not converged (degenerate ones included)
+  std::size_t degenerate = 0;  ///< of the failures, those whose status is "degenerate"
+  /// Registrations that failed from the guess and converged on a retry: from the
+  /// constant-velocity prediction, or, without wheel odometry, with the scan as taken.
+  std::size_t recovered_by_retry = 0;
   /// Ambiguous registrations (distinct motions fit the scans as well: repeated structure) where
   /// the prediction over the interval allows one of those motions alone: taken as converged.
   std::size_t decided_by_prediction = 0;
