@@ -243,7 +243,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   bool last_scan_as_taken = false;
   PredictionRecord wheel_record, velocity_record;  // the two predictions' errors on the converged steps
   std::size_t keyframe = 0;
-  // Each scan's motion over its sweep, fixed when the scan is first matched; the first scan's
+  // Each scan's motion over its sweep, set when the scan is matched as the source; the first scan's
   // by the wheel odometry alone, when the log has it.
   std::vector<SweepMotion> sweeps(entries.size());
   if (options.deskew && entries[0].scan.time_increment > 0.0)
