@@ -88,6 +88,9 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   if (run.stats.fused > 0)
     std::printf("  fused with the wheel odometry: %zu (%zu where the scans left a direction free)\n", run.stats.fused,
                 run.stats.pinned_by_wheels);
+  if (run.stats.recovered_by_retry > 0)
+    std::printf("  declined, then converged on a retry (from the prediction, or the scan as taken): %zu\n",
+                run.stats.recovered_by_retry);
   if (run.stats.decided_by_prediction > 0)
     std::printf("  ambiguous, decided by the predicted motion: %zu\n", run.stats.decided_by_prediction);
   for (const auto &[reason, count] : run.stats.failure_reasons)
