@@ -68,6 +68,10 @@ void bindOdometry(py::module_ &m) {
           "pinned_by_wheels", [](const odometry::OdometryRun &r) { return r.stats.pinned_by_wheels; },
           "of those, the ones whose scans left a direction free (a corridor's axis)")
       .def_property_readonly(
+          "recovered_by_retry", [](const odometry::OdometryRun &r) { return r.stats.recovered_by_retry; },
+          "registrations declined from the guess that converged on a retry: from the constant-velocity "
+          "prediction, or, without wheel odometry, with the scan as taken")
+      .def_property_readonly(
           "decided_by_prediction", [](const odometry::OdometryRun &r) { return r.stats.decided_by_prediction; },
           "ambiguous registrations (distinct motions fit the scans as well) where the motion predicted over the "
           "interval allows one of them alone: taken as converged")
