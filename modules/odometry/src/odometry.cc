@@ -285,39 +285,42 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       sweeps[k] = *wheel_sweep;
     else if (deskewing && velocity_dt > 1e-3 && !last_scan_as_taken)
       sweeps[k] = twistOver(velocity_motion, velocity_dt);
-    MatchResult match = matcher.match(target, entries[k].scan, toMatrix(guess), target_sweep, sweeps[k]);
-    // A failure gets a second try from the constant-velocity prediction when that is a
-    // different guess (a turn or a drive that goes on, where the first guess was "no motion").
+    // The registration of the scan deskewed by `source_sweep`: from the guess, and on a failure
+    // once more from the constant-velocity prediction when that is a different guess (a turn or
+    // a drive that goes on, where the first guess was "no motion"). `retried`: the second converged.
     const io::Pose2D velocity_guess = between(poses[reference], by_velocity);
     const io::Pose2D guess_gap = between(guess, velocity_guess);
     const bool velocity_differs = options.retry_with_velocity && velocity_scale > 0.0 &&
                                   (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05);
-    if (!match.converged && velocity_differs) {
-      const MatchResult retry =
-          matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, sweeps[k]);
-      const double first_ms = match.milliseconds;
-      if (retry.converged) {
-        match = retry;
-        ++run.stats.recovered_by_retry;
+    const auto registerDeskewed = [&](const SweepMotion &source_sweep, bool &retried) {
+      MatchResult found = matcher.match(target, entries[k].scan, toMatrix(guess), target_sweep, source_sweep);
+      retried = false;
+      if (!found.converged && velocity_differs) {
+        MatchResult second =
+            matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, source_sweep);
+        second.milliseconds += found.milliseconds;
+        if (second.converged) {
+          retried = true;
+          return second;
+        }
+        found.milliseconds = second.milliseconds;
       }
-      match.milliseconds = first_ms + retry.milliseconds;
-    }
+      return found;
+    };
+    bool retried = false;
+    MatchResult match = registerDeskewed(sweeps[k], retried);
+    run.stats.recovered_by_retry += retried;
     // Without wheel odometry the scan was deskewed by the last motion; where a turn or a drive
     // ended within the interval, that bends a scan taken straight. A failure gets one more try
     // with the scan as taken, and the scan stays so.
     bool as_taken = false;
     if (!match.converged && deskewing && !by_wheel && !sweeps[k].isZero()) {
       const double failed_ms = match.milliseconds;
-      MatchResult taken = matcher.match(target, entries[k].scan, toMatrix(guess), target_sweep, SweepMotion{});
-      if (!taken.converged && velocity_differs) {
-        const double guess_ms = taken.milliseconds;
-        taken = matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, SweepMotion{});
-        taken.milliseconds += guess_ms;
-      }
-      if (taken.converged) {
+      const MatchResult taken = registerDeskewed(SweepMotion{}, retried);
+      as_taken = taken.converged;
+      if (as_taken) {
         match = taken;
         sweeps[k] = SweepMotion{};
-        as_taken = true;
         ++run.stats.recovered_by_retry;
       }
       match.milliseconds = failed_ms + taken.milliseconds;
