@@ -54,7 +54,10 @@ case "${1:-build}" in
     ;;
   sanitize)
     install_packages "${PACKAGES[@]}"
-    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONTOUR_REG_SANITIZE=ON
+    # -O1 with line tables only: reports still name the file and line of every frame, and the
+    # instrumented build compiles in about half the time of -O2 -g.
+    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONTOUR_REG_SANITIZE=ON \
+      "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
     cmake --build build-asan -j"$(nproc)"
     # The consumer project installs and links the package without the sanitizer runtime.
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
