@@ -287,44 +287,39 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       sweeps[k] = twistOver(velocity_motion, velocity_dt);
     // The registration of the scan deskewed by `source_sweep`: from the guess, and on a failure
     // once more from the constant-velocity prediction when that is a different guess (a turn or
-    // a drive that goes on, where the first guess was "no motion"). `retried`: the second converged.
+    // a drive that goes on, where the first guess was "no motion"). `tries` counts the registrations.
     const io::Pose2D velocity_guess = between(poses[reference], by_velocity);
     const io::Pose2D guess_gap = between(guess, velocity_guess);
     const bool velocity_differs = options.retry_with_velocity && velocity_scale > 0.0 &&
                                   (std::hypot(guess_gap.x, guess_gap.y) > 0.05 || std::abs(guess_gap.yaw) > 0.05);
-    const auto registerDeskewed = [&](const SweepMotion &source_sweep, bool &retried) {
+    std::size_t tries = 0;
+    const auto registerDeskewed = [&](const SweepMotion &source_sweep) {
+      ++tries;
       MatchResult found = matcher.match(target, entries[k].scan, toMatrix(guess), target_sweep, source_sweep);
-      retried = false;
-      if (!found.converged && velocity_differs) {
-        MatchResult second =
-            matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, source_sweep);
-        second.milliseconds += found.milliseconds;
-        if (second.converged) {
-          retried = true;
-          return second;
-        }
-        found.milliseconds = second.milliseconds;
-      }
+      if (found.converged || !velocity_differs) return found;
+      ++tries;
+      MatchResult second = matcher.match(target, entries[k].scan, toMatrix(velocity_guess), target_sweep, source_sweep);
+      second.milliseconds += found.milliseconds;
+      if (second.converged) return second;
+      found.milliseconds = second.milliseconds;
       return found;
     };
-    bool retried = false;
-    MatchResult match = registerDeskewed(sweeps[k], retried);
-    run.stats.recovered_by_retry += retried;
+    MatchResult match = registerDeskewed(sweeps[k]);
     // Without wheel odometry the scan was deskewed by the last motion; where a turn or a drive
     // ended within the interval, that bends a scan taken straight. A failure gets one more try
     // with the scan as taken, and the scan stays so.
     bool as_taken = false;
     if (!match.converged && deskewing && !by_wheel && !sweeps[k].isZero()) {
       const double failed_ms = match.milliseconds;
-      const MatchResult taken = registerDeskewed(SweepMotion{}, retried);
+      const MatchResult taken = registerDeskewed(SweepMotion{});
       as_taken = taken.converged;
       if (as_taken) {
         match = taken;
         sweeps[k] = SweepMotion{};
-        ++run.stats.recovered_by_retry;
       }
       match.milliseconds = failed_ms + taken.milliseconds;
     }
+    run.stats.recovered_by_retry += match.converged && tries > 1;
     // Otherwise deskewed again with the motion this registration found over the interval,
     // rather than the last one. That motion is the scan's sweep from here on, as the next
     // registration's target, even where this second registration fails (on a bent target).
