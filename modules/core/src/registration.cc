@@ -162,7 +162,8 @@ void reset(RegistrationResult &result) {
 
 void registerByCorners(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                        const decision::Checks &checks, std::mt19937 &rng, const Eigen::Matrix3d *guess,
-                       RegistrationBuffers &buffers, RegistrationResult &result) {
+                       RegistrationBuffers &buffers, RegistrationResult &result,
+                       std::optional<decision::ScoredMotion> &corner_motion) {
   reset(result);
   if (guess) result.transform = *guess;
   std::string why;
@@ -268,6 +269,8 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     const RegistrationStatus verdict = decision::judgeCornerMotion(judged, corners, params, checks, guess,
                                                                    result.candidates, buffers, scorer, against);
     if (verdict != RegistrationStatus::kConverged) {
+      scorer.score(judged.best);
+      corner_motion = judged.best;
       result.rejected = rejected(judged.best, scorer);
       if (verdict == RegistrationStatus::kAmbiguous) nameAlternatives(result, *result.rejected, judged, scorer);
       return failAtGuess(result, guess, verdict, std::to_string(corners) + " special points" + against);
@@ -280,17 +283,28 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
   result.reason.clear();
 }
 
-// Few corners: the contours' own hypotheses, refined and judged.
+// Few corners: the contours' own hypotheses, refined and judged. The corners' motion that the
+// judge declined (`corner_motion`, refined and scored), if any, joins them when it is distinct from
+// their best and scores clearly better (by more than the tie): the contours fit it best, so it
+// is judged as a motion of the contours, which their own starts did not reach. One that scores
+// no better than their best leaves the decision to them.
 void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &target, const RegistrationParams &params,
                       const decision::Checks &checks, const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
-                      RegistrationResult &result) {
+                      RegistrationResult &result, std::optional<decision::ScoredMotion> &corner_motion) {
   result.alternatives.clear();  // the fallback's verdict replaces the corners'
   const RefinementParams wide = decision::widened(params, checks);
   std::vector<RefinementStart> &starts = buffers.starts;
   decision::contourHypotheses(source, target, params, checks, guess, result.candidates, wide, starts);
   decision::Scorer scorer(source, target, params.free_space, buffers);
-  decision::Judged judged =
-      decision::chooseBest(decision::refineHypotheses(source, target, starts, buffers), guess, scorer);
+  const std::vector<RefinementResult> &hypotheses = decision::refineHypotheses(source, target, starts, buffers);
+  decision::Judged judged = decision::chooseBest(hypotheses, guess, scorer);
+  if (corner_motion &&
+      motionDistance(corner_motion->refined.transform, judged.best.refined.transform) > kDistinctMotions &&
+      corner_motion->score > scorer.score(judged.best) + decision::kScoreTie) {
+    std::vector<RefinementResult> with_corners = hypotheses;
+    with_corners.push_back(std::move(corner_motion->refined));
+    judged = decision::chooseBest(with_corners, guess, scorer);
+  }
   std::string why;
   const RegistrationStatus verdict = decision::judgeContourMotion(judged, params, checks, buffers, scorer, why);
   // The corner motion declined before, if any, is weighed with what the contours found.
@@ -329,10 +343,11 @@ void decision::registerContoursWith(const ContourFeatures &source, const Contour
                                     const Eigen::Matrix3d *guess, RegistrationBuffers &buffers,
                                     RegistrationResult &result) {
   buffers.refiner.setModel(checks.refinement_model);
-  registerByCorners(source, target, params, checks, rng, guess, buffers, result);
+  std::optional<decision::ScoredMotion> corner_motion;  // the corners' motion, if the judge declined it
+  registerByCorners(source, target, params, checks, rng, guess, buffers, result, corner_motion);
   if (!result.converged && isUndecided(result.status) && params.local_fallback_min_overlap > 0.0 &&
       params.refinement.enabled && !source.contours.empty() && !target.contours.empty())
-    tryLocalFallback(source, target, params, checks, guess, buffers, result);
+    tryLocalFallback(source, target, params, checks, guess, buffers, result, corner_motion);
 }
 
 RegistrationResult decision::registerContoursWith(const ContourFeatures &source, const ContourFeatures &target,

@@ -11,6 +11,9 @@
 ///   one), the motion each of the first candidate pairs of corners implies on its own (the
 ///   rotation arg(N, G) of eq. 14 and the translation that brings the two corners together),
 ///   and the motions the contours' directions and wall offsets suggest (direction_histogram.h).
+///   The corners' motion the judge declined, already refined and scored, joins them when it
+///   is distinct from their best and scores clearly better (registration.cc): their starts
+///   did not reach the motion the contours fit best.
 
 #include <vector>
 
