@@ -269,7 +269,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
     const RegistrationStatus verdict = decision::judgeCornerMotion(judged, corners, params, checks, guess,
                                                                    result.candidates, buffers, scorer, against);
     if (verdict != RegistrationStatus::kConverged) {
-      scorer.score(judged.best);
+      scorer.score(judged.best);  // the fallback weighs it by its score
       corner_motion = judged.best;
       result.rejected = rejected(judged.best, scorer);
       if (verdict == RegistrationStatus::kAmbiguous) nameAlternatives(result, *result.rejected, judged, scorer);
