@@ -171,6 +171,29 @@ TEST(Odometry, DeskewingFollowsTheLoggedWheelOdometryWithinASweep) {
   EXPECT_GT(at_scans.deskewed, 5.0 * logged.deskewed);  // 2.7 % against 0.25 %
 }
 
+// A log with odometry at its scans only whose logger stamped scans in bursts, as intel's did:
+// the robot turns 0.05 rad per scan at 10 Hz (0.5 rad/s), but scans 5 and 6 are stamped 1 ms
+// apart. The twist over scan 5's sweep is the turn over the usual scan interval, not the turn
+// divided into 1 ms (50 rad/s, which would turn the scan by 0.67 rad within its 13 ms sweep).
+TEST(Odometry, ScansStampedInABurstDoNotGiveTheirSweepAFasterTwist) {
+  io::ScanLog log;
+  for (int k = 0; k < 12; ++k) {
+    io::LogEntry entry;
+    entry.scan.stamp = k < 6 ? 0.1 * k : 0.1 * (k - 1) + 0.001;  // scan 6 stamped 1 ms after scan 5
+    entry.scan.angle_increment = M_PI / 180.0;
+    entry.scan.time_increment = 0.0133 / 180.0;
+    entry.scan.ranges.assign(181, 5.0f);
+    entry.odometry = io::Pose2D{0.0, 0.0, 0.05 * k};
+    log.entries.push_back(entry);
+  }
+  for (const std::size_t k : {std::size_t{3}, std::size_t{5}}) {
+    const std::optional<SweepMotion> sweep = wheelMotionOverSweep(log, k);
+    ASSERT_TRUE(sweep.has_value()) << "scan " << k;
+    EXPECT_TRUE(sweep->changes.empty()) << "scan " << k;
+    EXPECT_NEAR(sweep->twist.wz, 0.5, 0.05) << "scan " << k;  // rad/s
+  }
+}
+
 // The first scan is deskewed too: it is the first registration's target. With exact wheel
 // odometry the first step comes out as it would from scans taken at rest.
 TEST(Odometry, TheFirstScanIsDeskewedByTheWheelOdometry) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <vector>
 
 #include <Eigen/Cholesky>
 
@@ -188,18 +190,53 @@ std::optional<Frame> frameNamed(const std::string &name) { return enumNamed<Fram
 
 Twist2D twistOver(const io::Pose2D &motion, double dt) { return {motion.x / dt, motion.y / dt, motion.yaw / dt}; }
 
+namespace {
+
+// The twist of the robot's `motion` over `dt` s, in the laser's frame when the log gives its mounting.
+Twist2D sensorTwist(const io::ScanLog &log, const io::Pose2D &motion, double dt) {
+  return twistOver(log.laser_pose ? io::laserMotion(motion, *log.laser_pose) : motion, dt);
+}
+
+}  // namespace
+
+double medianScanInterval(const io::ScanLog &log) {
+  std::vector<double> intervals;
+  std::optional<double> previous;
+  for (const io::LogEntry &entry : log.entries) {
+    if (!entry.odometry) continue;
+    if (previous) intervals.push_back(entry.scan.stamp - *previous);
+    previous = entry.scan.stamp;
+  }
+  if (intervals.empty()) return 0.0;
+  std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
+  return intervals[intervals.size() / 2];
+}
+
 std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k) {
+  return wheelMotionOverSweep(log, k, log.wheel_odometry.empty() ? medianScanInterval(log) : 0.0);
+}
+
+std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k, double usual_interval) {
   if (k >= log.entries.size()) return std::nullopt;
   const LaserScan &scan = log.entries[k].scan;
   const double begin = scan.stamp;
   const double end = begin + scan.time_increment * static_cast<double>(scan.ranges.size());
-  std::vector<io::StampedPose> own;  // the scans' odometry from scan k on, for a log that keeps no samples
   if (log.wheel_odometry.empty()) {
+    // The scans' own odometry: one twist, the motion to the next scan with odometry over their
+    // interval, or over the log's usual interval where theirs is shorter. A LIDAR takes its
+    // scans no faster than its rate; a shorter interval is a logger's stamp (intel's logger
+    // wrote scans in bursts of up to 14, stamped a millisecond apart and a whole scan's turn
+    // apart), and that turn divided into it would be a twist many times too fast.
     if (!log.entries[k].odometry) return std::nullopt;
-    for (std::size_t j = k; j < log.entries.size() && (j == k || own.back().stamp < end); ++j)
-      if (log.entries[j].odometry) own.push_back({log.entries[j].scan.stamp, *log.entries[j].odometry});
+    for (std::size_t j = k + 1; j < log.entries.size(); ++j) {
+      if (!log.entries[j].odometry) continue;
+      const double dt = std::max(log.entries[j].scan.stamp - begin, usual_interval);
+      if (!(dt > 1e-6)) return std::nullopt;
+      return SweepMotion(sensorTwist(log, between(*log.entries[k].odometry, *log.entries[j].odometry), dt));
+    }
+    return std::nullopt;
   }
-  const std::vector<io::StampedPose> &samples = log.wheel_odometry.empty() ? own : log.wheel_odometry;
+  const std::vector<io::StampedPose> &samples = log.wheel_odometry;
   // The interval that holds the first beam starts at the last sample at or before it.
   auto first = std::upper_bound(samples.begin(), samples.end(), begin,
                                 [](double t, const io::StampedPose &p) { return t < p.stamp; });
@@ -209,8 +246,7 @@ std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::siz
   for (auto a = first; a + 1 != samples.end() && (a == first || a->stamp < end); ++a) {
     const double dt = (a + 1)->stamp - a->stamp;
     if (!(dt > 1e-6)) continue;  // repeated stamps carry no velocity
-    const io::Pose2D robot = between(a->pose, (a + 1)->pose);
-    const Twist2D twist = twistOver(log.laser_pose ? io::laserMotion(robot, *log.laser_pose) : robot, dt);
+    const Twist2D twist = sensorTwist(log, between(a->pose, (a + 1)->pose), dt);
     if (!motion)
       motion = SweepMotion(twist);
     else
@@ -246,8 +282,9 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   // Each scan's motion over its sweep, set when the scan is matched as the source; the first scan's
   // by the wheel odometry alone, when the log has it.
   std::vector<SweepMotion> sweeps(entries.size());
+  const double usual_interval = log.wheel_odometry.empty() ? medianScanInterval(log) : 0.0;
   if (options.deskew && entries[0].scan.time_increment > 0.0)
-    if (const std::optional<SweepMotion> first = wheelMotionOverSweep(log, 0)) sweeps[0] = *first;
+    if (const std::optional<SweepMotion> first = wheelMotionOverSweep(log, 0, usual_interval)) sweeps[0] = *first;
   // The local map: its keyframes (oldest first) and the scan drawn of them at the newest.
   const bool mapping = options.local_map_keyframes > 0;
   std::vector<std::size_t> map_keyframes{0};
@@ -279,7 +316,8 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     const io::Pose2D guess = between(poses[reference], expected);
     const bool deskewing = options.deskew && entries[k].scan.time_increment > 0.0;
     // The motion over this scan's sweep: the wheel odometry's when the log has it, else the last motion.
-    const std::optional<SweepMotion> wheel_sweep = deskewing ? wheelMotionOverSweep(log, k) : std::nullopt;
+    const std::optional<SweepMotion> wheel_sweep =
+        deskewing ? wheelMotionOverSweep(log, k, usual_interval) : std::nullopt;
     const bool by_wheel = wheel_sweep.has_value();
     if (by_wheel)
       sweeps[k] = *wheel_sweep;

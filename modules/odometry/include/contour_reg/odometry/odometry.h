@@ -128,11 +128,19 @@ io::Trajectory wheelOdometry(const io::ScanLog &log);
 Twist2D twistOver(const io::Pose2D &motion, double dt);
 
 /// The laser's motion over scan k's sweep by the wheel odometry, brought to the laser by the
-/// log's mounting: one constant twist per interval of the odometry's samples that the sweep
-/// overlaps (ScanLog::wheel_odometry, or the scans' own odometry when the log keeps no
-/// samples), the last one held past the last sample. None when no sample is at or before the
-/// scan's stamp, or there is no interval to take a twist from.
+/// log's mounting: one constant twist per interval of the odometry's samples
+/// (ScanLog::wheel_odometry) that the sweep overlaps, the last one held past the last sample.
+/// A log that keeps no samples gives one twist from the scans' own odometry: the motion to the
+/// next scan over their interval, or over the log's median scan interval (medianScanInterval)
+/// where theirs is shorter (a logger that stamped scans in bursts). None when no sample is at
+/// or before the scan's stamp, or there is no interval to take a twist from.
 std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k);
+
+/// The same with the log's median scan interval computed once by the caller (`usual_interval`, s).
+std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k, double usual_interval);
+
+/// s, the median interval between consecutive scans with odometry of `log` (0 with fewer than two).
+double medianScanInterval(const io::ScanLog &log);
 
 /// Runs odometry over `log` with `matcher`. A registration that fails is retried from the
 /// constant-velocity prediction (retry_with_velocity); one that fails again is never chained but
