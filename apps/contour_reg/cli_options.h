@@ -238,10 +238,11 @@ void printReadReport(const io::ScanLog &log);
 std::string beamsRead(const io::LogReadOptions &read);
 
 /// The motion over scan k's sweep, by the wheel odometry, as the odometry deskews it: none when
-/// `deskew` is off or the scan carries no beam timing.
-inline SweepMotion sweepToDeskew(const io::ScanLog &log, std::size_t k, bool deskew) {
+/// `deskew` is off or the scan carries no beam timing. `usual_interval`: the log's
+/// odometry::medianScanInterval, computed once per log.
+inline SweepMotion sweepToDeskew(const io::ScanLog &log, std::size_t k, bool deskew, double usual_interval) {
   const bool timed = deskew && log.entries[k].scan.time_increment > 0.0;
-  return timed ? odometry::wheelMotionOverSweep(log, k).value_or(SweepMotion{}) : SweepMotion{};
+  return timed ? odometry::wheelMotionOverSweep(log, k, usual_interval).value_or(SweepMotion{}) : SweepMotion{};
 }
 
 /// printf into a string.

@@ -70,7 +70,8 @@ int runClosure(const ClosureOptions &options) {
       evaluation::kNees99);
   std::printf("|---|---|---|---|---|---|---|\n");
   std::vector<std::string> pose_rows;  // with --log-poses, one per method
-  const auto sweep = [&](std::size_t k) { return sweepToDeskew(log, k, options.deskew); };
+  const double usual_interval = odometry::medianScanInterval(log);
+  const auto sweep = [&](std::size_t k) { return sweepToDeskew(log, k, options.deskew, usual_interval); };
   for (const std::string &name : options.methods) {
     auto matcher = odometry::makeScanMatcher(name, options.method_options.settings());
     const auto match = [&](std::size_t first, std::size_t second) {

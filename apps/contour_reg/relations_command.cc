@@ -222,7 +222,8 @@ int runRelations(const RelationsOptions &options) {
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
-  const auto sweep = [&](std::size_t k) { return sweepToDeskew(log, k, options.deskew); };
+  const double usual_interval = odometry::medianScanInterval(log);
+  const auto sweep = [&](std::size_t k) { return sweepToDeskew(log, k, options.deskew, usual_interval); };
   std::fflush(stdout);
   std::vector<std::string> failures;          // printed after the table
   std::vector<std::string> gross_lines;       // likewise

@@ -27,13 +27,26 @@ RegistrationResult registerScans(const io::ScanLog &log, std::size_t target, std
   return registration.getResult();
 }
 
+// The log at `relative` under ../shared/datasets; null when absent.
+std::unique_ptr<io::ScanLog> sharedLog(const std::string &relative) {
+  const std::string path = test::sharedDataset(relative);
+  return path.empty() ? nullptr : std::make_unique<io::ScanLog>(io::readLog(path));
+}
+
 // The Radish infinite-corridor log (GMapping-corrected), read once for every test; null when absent.
 const io::ScanLog *infiniteCorridor() {
-  static const std::unique_ptr<io::ScanLog> log = [] {
-    const std::string path = test::sharedDataset("radish-gmapping-corrected/infinite-corridor-corrected.log.gz");
-    return path.empty() ? nullptr : std::make_unique<io::ScanLog>(io::readLog(path));
-  }();
+  static const std::unique_ptr<io::ScanLog> log =
+      sharedLog("radish-gmapping-corrected/infinite-corridor-corrected.log.gz");
   return log.get();
+}
+
+// How far the motion `t` lies from the motion (x m, y m, yaw rad): m of translation, deg of turn.
+struct Departure {
+  double metres = 0.0, degrees = 0.0;
+};
+Departure departure(const Eigen::Matrix3d &t, double x, double y, double yaw) {
+  return {std::hypot(t(0, 2) - x, t(1, 2) - y),
+          std::abs(std::remainder(std::atan2(t(1, 0), t(0, 0)) - yaw, 2 * M_PI)) * 180 / M_PI};
 }
 
 // mit-csail, relation 1134864970.88318 -> 1134864971.52318 (scans 1598 and 1601): the robot
@@ -44,27 +57,22 @@ const io::ScanLog *infiniteCorridor() {
 // declines it, naming it, when only a quarter of the contours overlap and a direction stays
 // weakly constrained. Either way the corners' motion 90 deg off is not the answer.
 TEST(RelationPairs, AFewCornersThatExplainLittleOfTheScanMeetTheContoursHypotheses) {
-  const std::string path = test::sharedDataset("mit-csail/mit-csail.clf");
-  if (path.empty()) GTEST_SKIP() << "../shared/datasets/mit-csail is absent";
-  const io::ScanLog log = io::readLog(path);
+  const std::unique_ptr<io::ScanLog> log = sharedLog("mit-csail/mit-csail.clf");
+  if (!log) GTEST_SKIP() << "../shared/datasets/mit-csail is absent";
   const RegistrationResult result =
-      registerScans(log, io::nearestEntry(log, 1134864970.88318), io::nearestEntry(log, 1134864971.52318));
+      registerScans(*log, io::nearestEntry(*log, 1134864970.88318), io::nearestEntry(*log, 1134864971.52318));
 
-  const auto error_to_truth = [](const Eigen::Matrix3d &t, double *turn_deg) {
-    *turn_deg = std::abs(std::remainder(std::atan2(t(1, 0), t(0, 0)) - (-0.55017), 2 * M_PI)) * 180 / M_PI;
-    return std::hypot(t(0, 2) - 0.65191, t(1, 2) - (-0.15332));
-  };
-  double turn = 0.0;
+  const auto from_truth = [](const Eigen::Matrix3d &t) { return departure(t, 0.65191, -0.15332, -0.55017); };
   if (result.converged) {
     // Converging must be right.
-    EXPECT_LT(error_to_truth(result.transform, &turn), 0.1);
-    EXPECT_LT(turn, 2.0);
+    EXPECT_LT(from_truth(result.transform).metres, 0.1);
+    EXPECT_LT(from_truth(result.transform).degrees, 2.0);
   } else {
     // Declining names the walls' motion, weighed and not pinned, not the corners' one.
     EXPECT_EQ(result.status, RegistrationStatus::kUnconstrained) << result.reason;
     ASSERT_TRUE(result.rejected.has_value()) << result.reason;
-    EXPECT_LT(error_to_truth(result.rejected->transform, &turn), 0.15);
-    EXPECT_LT(turn, 2.0);
+    EXPECT_LT(from_truth(result.rejected->transform).metres, 0.15);
+    EXPECT_LT(from_truth(result.rejected->transform).degrees, 2.0);
   }
 }
 
@@ -75,17 +83,16 @@ TEST(RelationPairs, AFewCornersThatExplainLittleOfTheScanMeetTheContoursHypothes
 // there and 2 % in free space. The corners' motion, scoring clearly better, joins them and is
 // judged as the contours' own: the answer is right, not the best of the hypotheses that missed it.
 TEST(RelationPairs, TheCornersDeclinedMotionThatScoresClearlyBetterIsJudgedWithTheContoursHypotheses) {
-  const std::string path = test::sharedDataset("fr079/fr079.clf");
-  if (path.empty()) GTEST_SKIP() << "../shared/datasets/fr079 is absent";
-  const io::ScanLog log = io::readLog(path);
+  const std::unique_ptr<io::ScanLog> log = sharedLog("fr079/fr079.clf");
+  if (!log) GTEST_SKIP() << "../shared/datasets/fr079 is absent";
   const RegistrationResult result =
-      registerScans(log, io::nearestEntry(log, 1723.680581), io::nearestEntry(log, 1725.380798));
+      registerScans(*log, io::nearestEntry(*log, 1723.680581), io::nearestEntry(*log, 1725.380798));
 
   // The relation's motion.
   ASSERT_TRUE(result.converged) << result.reason;
-  const Eigen::Matrix3d &t = result.transform;
-  EXPECT_LT(std::hypot(t(0, 2) - 0.04844, t(1, 2) - (-0.07629)), 0.1);
-  EXPECT_LT(std::abs(std::remainder(std::atan2(t(1, 0), t(0, 0)) - (-1.16474), 2 * M_PI)) * 180 / M_PI, 2.0);
+  const Departure off = departure(result.transform, 0.04844, -0.07629, -1.16474);
+  EXPECT_LT(off.metres, 0.1);
+  EXPECT_LT(off.degrees, 2.0);
 }
 
 // infinite-corridor (Radish, GMapping-corrected), scans 461 and 463: the robot drives 2.03 m
@@ -100,9 +107,9 @@ TEST(RelationPairs, AMotionAPeriodAlongTheCorridorThatScoresClearlyBetterTakesTh
 
   // The corrected poses' motion from scan 461 to scan 463.
   ASSERT_TRUE(result.converged) << result.reason;
-  const Eigen::Matrix3d &t = result.transform;
-  EXPECT_LT(std::hypot(t(0, 2) - 2.0295, t(1, 2) - (-0.0844)), 0.1);
-  EXPECT_LT(std::abs(std::remainder(std::atan2(t(1, 0), t(0, 0)) - (-0.01030), 2 * M_PI)) * 180 / M_PI, 2.0);
+  const Departure off = departure(result.transform, 2.0295, -0.0844, -0.01030);
+  EXPECT_LT(off.metres, 0.1);
+  EXPECT_LT(off.degrees, 2.0);
 }
 
 // infinite-corridor, scans 1807 and 1810: the robot drives 3.14 m along the corridor. Of 5

@@ -213,7 +213,7 @@ double medianScanInterval(const io::ScanLog &log) {
 }
 
 std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k) {
-  return wheelMotionOverSweep(log, k, log.wheel_odometry.empty() ? medianScanInterval(log) : 0.0);
+  return wheelMotionOverSweep(log, k, medianScanInterval(log));
 }
 
 std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k, double usual_interval) {
@@ -282,7 +282,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
   // Each scan's motion over its sweep, set when the scan is matched as the source; the first scan's
   // by the wheel odometry alone, when the log has it.
   std::vector<SweepMotion> sweeps(entries.size());
-  const double usual_interval = log.wheel_odometry.empty() ? medianScanInterval(log) : 0.0;
+  const double usual_interval = medianScanInterval(log);
   if (options.deskew && entries[0].scan.time_increment > 0.0)
     if (const std::optional<SweepMotion> first = wheelMotionOverSweep(log, 0, usual_interval)) sweeps[0] = *first;
   // The local map: its keyframes (oldest first) and the scan drawn of them at the newest.

@@ -136,7 +136,8 @@ Twist2D twistOver(const io::Pose2D &motion, double dt);
 /// or before the scan's stamp, or there is no interval to take a twist from.
 std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k);
 
-/// The same with the log's median scan interval computed once by the caller (`usual_interval`, s).
+/// The same with the log's medianScanInterval computed once by the caller (`usual_interval`, s):
+/// the form for a loop over a log's scans.
 std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::size_t k, double usual_interval);
 
 /// s, the median interval between consecutive scans with odometry of `log` (0 with fewer than two).
