@@ -95,6 +95,9 @@ TEST(Decision, PeopleWalkingThroughDoNotRefuteTheRightMotion) {
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_LT(errorOf(r, target, source).head<2>().norm(), 0.02);
   EXPECT_LT(std::abs(errorOf(r, target, source).z()), 0.01);
+  // The people are smaller than a moved object may be (FreeSpaceParams::min_object_length):
+  // the score counts none of them against the motion.
+  EXPECT_DOUBLE_EQ(r.score, r.overlap);
 }
 
 // A 6 m partition stands in the source scan only, where the target saw across the room: the
@@ -109,6 +112,16 @@ TEST(Decision, AnObjectInOneScanOnlyDoesNotRefuteTheRightMotion) {
   const RegistrationResult r = registerPair(room, target, source, {}, &partitioned);
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_LT(errorOf(r, target, source).head<2>().norm(), 0.02);
+  // Its score, the overlap less the share of both contours in the other scan's free space,
+  // counts the partition: a tenth of the contours.
+  EXPECT_NEAR(r.overlap - r.score, 0.1, 0.03);
+  // The same where the contours' own motion is judged, the corners never deciding.
+  RegistrationParams contours_only;
+  contours_only.min_inliers = 1000;
+  const RegistrationResult fallback = registerPair(room, target, source, contours_only, &partitioned);
+  ASSERT_TRUE(fallback.converged && fallback.from_local_fallback) << fallback.reason;
+  EXPECT_LT(errorOf(fallback, target, source).head<2>().norm(), 0.02);
+  EXPECT_NEAR(fallback.overlap - fallback.score, 0.1, 0.03);
 }
 
 // The partition stands across the room in the target scan and 1 m in front of a wall in the source:
@@ -204,6 +217,8 @@ TEST(Decision, TheResultNamesTheBestRejectedMotion) {
   EXPECT_GT(right.rejected->overlap, right.overlap - 0.05);
   EXPECT_GT(right.rejected->overlap - right.rejected->score, 0.03);
   EXPECT_LT(right.rejected->score, right.overlap - 0.05);
+  // The scores the judge compared: the answer's beats the rival's by more than the tie.
+  EXPECT_GT(right.score, right.rejected->score + 0.05);
 
   simulation::World square;
   square.addPolygon({{-3, -3}, {3, -3}, {3, 3}, {-3, 3}});

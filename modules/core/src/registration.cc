@@ -276,6 +276,7 @@ void registerByCorners(const ContourFeatures &source, const ContourFeatures &tar
       return failAtGuess(result, guess, verdict, std::to_string(corners) + " special points" + against);
     }
     if (judged.rival) result.rejected = rejected(*judged.rival, scorer);
+    result.score = scorer.score(judged.best);
     if (result.degenerate) result.pinned = decision::pinnedPart(refined, checks.refinement_model);
   }
   result.converged = true;
@@ -328,6 +329,7 @@ void tryLocalFallback(const ContourFeatures &source, const ContourFeatures &targ
   result.transform = refined.transform;
   result.contour_rmse = refined.rmse;
   result.overlap = refined.overlap;
+  result.score = scorer.score(judged.best);
   result.covariance = refined.covariance;
   result.degenerate = false;
   result.from_local_fallback = true;

@@ -137,8 +137,12 @@ struct RegistrationResult {
   std::vector<int> inliers;                ///< indices into `candidates`
   double inlier_rmse = 0.0;                ///< m, corner vertices of the inliers
   int ransac_iterations = 0;
-  double contour_rmse = 0.0;                             ///< m, point-to-line after refinement (0 without it)
-  double overlap = 0.0;                                  ///< fraction of source contour paired by the refinement
+  double contour_rmse = 0.0;  ///< m, point-to-line after refinement (0 without it)
+  double overlap = 0.0;       ///< fraction of source contour paired by the refinement
+  /// A converged estimate's score, as the judge weighed it against its rivals (RejectedMotion::score):
+  /// `overlap` less the share of both contours the estimate puts in the other scan's free space.
+  /// 0 when not converged (`rejected` holds the declined motion's) or without the refinement.
+  double score = 0.0;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< x, y, yaw of the estimate
   /// Some direction of the estimate is unconstrained: the contours leave it so (a corridor,
   /// a single wall) and fewer than three inlier corners pin it.
