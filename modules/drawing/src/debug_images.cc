@@ -228,6 +228,15 @@ void wrapped(cv::Mat &image, std::string reason, cv::Point at, std::size_t colum
   }
 }
 
+// A motion's overlap and score as the judge weighed it, written at the same height in the
+// result's band and the rejected motion's, so that the two read side by side.
+void writeScore(cv::Mat &band, double overlap, double score) {
+  char line[120];
+  std::snprintf(line, sizeof line, "overlap %.0f %%, score %.2f (overlap less the share in free space)",
+                100.0 * overlap, score);
+  text(band, line, {15, 80}, 0.5);
+}
+
 // `panel`: the target and the source moved onto it by `motion`, and in magenta the contour
 // that motion puts in the other scan's free space (free_space.h): source contour where the
 // target looked through, target contour where the source did, both in the target frame. The
@@ -314,10 +323,7 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
     std::snprintf(line, sizeof line, "converged: x %.3f m, y %.3f m, yaw %.2f deg; contour rmse %.3f m%s", pose.x,
                   pose.y, pose.yaw * 180 / M_PI, result.contour_rmse, result.degenerate ? ", DEGENERATE" : "");
     text(top_right, line, {15, 28}, 0.55);
-    // In line with the rival's, so that the two scores the judge compared read side by side.
-    std::snprintf(line, sizeof line, "overlap %.0f %%, score %.2f (overlap less the share in free space)",
-                  100.0 * result.overlap, result.score);
-    text(top_right, line, {15, 80}, 0.5);
+    writeScore(top_right, result.overlap, result.score);
   } else {
     text(top_right, std::string("NOT CONVERGED (") + toString(result.status) + "):", {15, 28}, 0.6, Palette::warning());
     wrapped(top_right, result.reason, {15, 52}, 75, 3, Palette::warning());
@@ -335,9 +341,7 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
          0.6);
     std::snprintf(line, sizeof line, "x %.3f m, y %.3f m, yaw %.2f deg", other.x, other.y, other.yaw * 180 / M_PI);
     text(top, line, {15, 54}, 0.55);
-    std::snprintf(line, sizeof line, "overlap %.0f %%, score %.2f (overlap less the share in free space)",
-                  100.0 * rejected.overlap, rejected.score);
-    text(top, line, {15, 80}, 0.5);
+    writeScore(top, rejected.overlap, rejected.score);
   }
   return image;
 }
