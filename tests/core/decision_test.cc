@@ -328,6 +328,30 @@ TEST(Decision, InliersCloserThanTheirMinimumSpreadAreDegenerate) {
   EXPECT_EQ(r.status, RegistrationStatus::kDegenerate) << r.reason;
 }
 
+// A LIDAR of 3 m range and 180 deg field of view in a bare corridor, the source 0.35 m
+// further along it: each scan's walls end where its range ends and where its field of view
+// begins, ends that move with the sensor. At no motion they coincide, and the overlap is
+// largest there; moved along the corridor, the source's walls reach past the target's view,
+// where the target saw nothing to disagree. The probes of the weakest direction decide alone
+// (the Hessian's degeneracy test off): such ends pin no motion.
+TEST(Decision, TheEndsOfTheViewPinNoMotion) {
+  const simulation::World corridor = test::bareCorridor(30.0);
+  simulation::LidarModel short_range = simulation::LidarModel::sickLms200();
+  short_range.range_max = 3.0;
+  decision::Checks checks;
+  checks.refinement_model.degeneracy_ratio = 0.0;
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    std::mt19937 rng_a(seed), rng_b(seed + 100), rng(3);
+    const ContourFeatures target = extractContourFeatures(
+        simulation::simulateScan(corridor, test::pose2d(0, 0, 0), short_range, rng_a), ContourParams{});
+    const ContourFeatures source = extractContourFeatures(
+        simulation::simulateScan(corridor, test::pose2d(0.35, 0.02, 1), short_range, rng_b), ContourParams{});
+    const RegistrationResult r = decision::registerContoursWith(source, target, {}, checks, rng);
+    EXPECT_FALSE(r.converged) << "seed " << seed << ": x " << r.transform(0, 2) << " m, truth 0.35 m";
+    EXPECT_EQ(r.status, RegistrationStatus::kUnconstrained) << "seed " << seed << ": " << r.reason;
+  }
+}
+
 // The corridor and the circle, whose direction stays free, are in registration_test.cc.
 
 }  // namespace

@@ -77,6 +77,7 @@ void RangeView::index() {
     ranges_.swap(ranges);
   }
   buckets_.build(bearings_, 2);
+  farthest_ = ranges_.empty() ? 0.0 : *std::max_element(ranges_.begin(), ranges_.end());
   max_gap_ = 0.0;
   if (bearings_.size() < 2) return;
   spacing_.resize(bearings_.size() - 1);
@@ -109,6 +110,12 @@ RangeView::Sight RangeView::sightOf(const Eigen::Vector2d &point, double margin)
   const double range = point.norm();
   if (range < measured - margin) return Sight::kSeenThrough;
   return range > measured + margin ? Sight::kHidden : Sight::kNotThrough;
+}
+
+bool RangeView::reaches(const Eigen::Vector2d &point) const {
+  if (bearings_.empty()) return false;
+  const double bearing = approximateAtan2(point.y(), point.x());
+  return bearing >= bearings_.front() && bearing <= bearings_.back() && point.norm() <= farthest_;
 }
 
 FreeSpaceEvidence freeSpaceEvidence(const ContourFeatures &source, const RangeView &target_view,

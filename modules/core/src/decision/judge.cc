@@ -39,31 +39,60 @@ bool onlyAlongWeakestDirection(const RefinementResult &best, const Eigen::Matrix
 // stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
 constexpr double kMostOfTheContour = 0.5;
 
+// Whether `moved`, where a probe settled, fits worse than the best on the part of the source
+// within the target's reach under both (RangeView::reaches, and not hidden behind what the
+// target saw): the share of that part on the target contour less the free space's
+// contradiction, lower by more than the tie. Moved along a corridor, the source's walls reach
+// past where the target's range ended or before its field of view began: the overlap drops
+// there though nothing the target could see disagrees. Such ends of the view move with the
+// sensor and pin no motion.
+bool fitsWorseWithinReach(const RefinementResult &best, const RefinementResult &moved, const RegistrationParams &params,
+                          RegistrationBuffers &buffers, Scorer &scorer) {
+  const RangeView &view = scorer.targetView();
+  const auto seen = [&](const Eigen::Vector2d &point, int &on_contour) {
+    on_contour = buffers.refiner.pairs(point, params.refinement.min_distance);
+    return on_contour ||
+           (view.reaches(point) && view.sightOf(point, params.free_space.margin) != RangeView::Sight::kHidden);
+  };
+  int shared = 0, on_best = 0, on_moved = 0;
+  for (const Eigen::Vector2d &sample : buffers.samples) {
+    int a = 0, b = 0;
+    if (!seen(transformPoint(best.transform, sample), a) || !seen(transformPoint(moved.transform, sample), b)) continue;
+    ++shared;
+    on_best += a;
+    on_moved += b;
+  }
+  if (shared == 0) return false;
+  return static_cast<double>(on_moved) / shared - scorer.contradiction(moved.transform) <=
+         static_cast<double>(on_best) / shared - scorer.contradiction(best.transform) - kScoreTie;
+}
+
 // Whether the best is pinned along its weakest direction (RefinementResult::weakest_direction):
-// started `probe` m off along it, both ways, the refinement of the source's `samples` against
-// the `refiner`'s target must settle back on it, or at least score worse where it settles. A
-// probe distance of 0 turns the check off.
-bool settlesBack(Judged &found, double probe, const RefinementParams &params, const ContourRefiner &refiner,
-                 const std::vector<Eigen::Vector2d> &samples, Scorer &scorer) {
+// started `probe_distance` m off along it, both ways, the refinement of the source's samples
+// must settle back on it, or where it settles score worse and fit worse on what the target saw
+// (fitsWorseWithinReach). A probe distance of 0 turns the check off.
+bool settlesBack(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers, Scorer &scorer) {
   const RefinementResult &best = found.best.refined;
+  const double probe = params.probe_distance;
   if (!(probe > 0.0)) return true;
   if (best.weakest_direction.isZero()) return false;
   // Each probe starts `probe` m off: its first pairing distance reaches that much further.
-  RefinementParams from_probe = params;
-  from_probe.max_distance = params.max_distance + probe;
+  RefinementParams from_probe = params.refinement;
+  from_probe.max_distance = params.refinement.max_distance + probe;
   const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
   const auto from_best = [&](const Eigen::Matrix3d &m) { return offsetFrom(best, m).norm(); };
   for (const double sign : {1.0, -1.0}) {
     const Eigen::Vector3d off = sign * probe * best.weakest_direction;
     // A probe that has come back halfway into the settled radius has settled back: stop there.
     const RefinementResult r =
-        refiner.refine(samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe,
-                       [&](const Eigen::Matrix3d &m) { return from_best(m) <= 0.5 * kSettledBack * probe; });
+        buffers.refiner.refine(buffers.samples, rigidTransform(x + off(0), y + off(1), yaw + off(2)), from_probe,
+                               [&](const Eigen::Matrix3d &m) { return from_best(m) <= 0.5 * kSettledBack * probe; });
     const double left = from_best(r.transform);
     if (left <= kSettledBack * probe) continue;
     const double score = scorer.score(r);
     found.consider(r, score);
-    if (score > scorer.score(found.best) - kScoreTie) return false;
+    if (score > scorer.score(found.best) - kScoreTie || !fitsWorseWithinReach(best, r, params, buffers, scorer))
+      return false;
   }
   return true;
 }
@@ -124,9 +153,7 @@ bool pinnedAfterPromotions(Judged &found, const RegistrationParams &params, Regi
                            Scorer &scorer) {
   for (int promoted = 0;; ++promoted) {
     const RefinementResult &best = found.best.refined;
-    if (!best.degenerate &&
-        settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
-      return true;
+    if (!best.degenerate && settlesBack(found, params, buffers, scorer)) return true;
     if (best.degenerate || promoted == kMaxPromotions || !found.rival ||
         !(found.rival->score > scorer.score(found.best) + kScoreTie) ||
         !onlyAlongWeakestDirection(best, found.rival->refined.transform))
@@ -301,8 +328,7 @@ RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const R
                                                         " % after alignment");
   // A few corners, often along one wall, pin the motion no better than they are spread:
   // the contours must pin it too.
-  if (corners <= static_cast<std::size_t>(checks.probe_max_inliers) &&
-      !settlesBack(found, params.probe_distance, params.refinement, buffers.refiner, buffers.samples, scorer))
+  if (corners <= static_cast<std::size_t>(checks.probe_max_inliers) && !settlesBack(found, params, buffers, scorer))
     return verdict(RegistrationStatus::kUnconstrained, ", and the contours leave a direction weakly constrained");
   if (corners <= static_cast<std::size_t>(checks.guess_check_max_inliers) &&
       !standsAgainstGuess(found, params, checks, guess, buffers, scorer))

@@ -81,13 +81,19 @@ class RangeView {
   enum class Sight { kNoEvidence, kNotThrough, kSeenThrough, kHidden };
   Sight sightOf(const Eigen::Vector2d &point, double margin) const;
 
+  /// Whether a point (sensor frame) lies within the scan's reach: between its first and last
+  /// bearing (its field of view) and no farther than its farthest point (its range). Beyond
+  /// it the scan could not have seen the point; the gaps between its returns lie within it.
+  bool reaches(const Eigen::Vector2d &point) const;
+
  private:
   std::vector<double> bearings_, ranges_;
   BearingBuckets buckets_;       // over bearings_
   std::vector<double> spacing_;  // working memory of assign()
   void add(const Complex &point);
-  void index();           // sorts by bearing, buckets the bearings and sets max_gap_
-  double max_gap_ = 0.0;  // rad, bracketing returns farther apart than this leave a gap
+  void index();            // sorts by bearing, buckets the bearings and sets max_gap_
+  double max_gap_ = 0.0;   // rad, bracketing returns farther apart than this leave a gap
+  double farthest_ = 0.0;  // m, the largest range
 };
 
 /// The evidence of `target`'s view against the source's contour moved by `motion` (source to
