@@ -7,8 +7,11 @@
 /// - supported: enough of the source contour lies on the target contour after alignment (for
 ///   the contours' own motion, less where the beams of both scans agree with it);
 /// - pinned in every direction: refined again from `probe_distance` off along its weakest
-///   direction, both ways, it settles back or fits worse where it settles (a room passes; a
-///   bare corridor, a circle seen from inside, a corridor only a short stub closes do not);
+///   direction, both ways, it settles back or fits worse where it settles, also on the part
+///   of the source within the target's reach under both motions (its field of view and its
+///   range, whose ends move with the sensor and pin nothing) (a room passes; a bare corridor,
+///   a circle seen from inside, a corridor only a short stub closes, a corridor whose end is
+///   out of range do not);
 /// - unrivalled: no distinct motion scores within the tie, among the refined candidates and,
 ///   for a motion few corners decide, the contours' own answer from the guess; for a motion
 ///   the free space contradicts by more than the tie, among all the contours' hypotheses

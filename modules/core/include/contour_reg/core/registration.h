@@ -59,8 +59,10 @@ struct RegistrationParams {
   /// m, the probe: the local fallback's motion, and a motion only a few corners agree on,
   /// refined again from this far off along its weakest direction
   /// (RefinementResult::weakest_direction), both ways, must settle back or fit worse where it
-  /// settles. A room or a corridor with a closed end passes; a bare corridor, a circle seen
-  /// from inside or a corridor whose axis only a small stub constrains stay "not converged".
+  /// settles, also on the part of the source within the target's field of view and range. A
+  /// room or a corridor with a closed end passes; a bare corridor, a circle seen from inside,
+  /// a corridor whose axis only a small stub constrains or whose end is out of range stay
+  /// "not converged".
   /// The local fallback's motion must also be the best along that direction out to the scan's
   /// RMS range (a distinct motion there that fits as well: ambiguous). 0 skips both checks.
   double probe_distance = 0.2;
