@@ -118,6 +118,12 @@ std::string rejectedFields(const odometry::MatchResult &match) {
   return match.converged ? ",,," + fields : fields + ",,,";
 }
 
+// The CSV's est_overlap and est_score: the judge's figures of a converged contour answer, empty otherwise.
+std::string scoreFields(const odometry::MatchResult &match) {
+  if (!match.overlap || !match.score) return ",";
+  return printed("%.4f,%.4f", *match.overlap, *match.score);
+}
+
 // A relation's stamp this close to a scan's stamp is the scan's (s).
 constexpr double kStampMatch = 0.01;
 
@@ -217,7 +223,8 @@ int runRelations(const RelationsOptions &options) {
         csv,
         "method,first,second,t1_s,t2_s,ref_x_m,ref_y_m,ref_yaw_rad,est_x_m,est_y_m,est_yaw_rad,converged,"
         "recovered,error_m,error_deg,ms,status,reason,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,"
-        "ref_free_space,est_free_space,declined_x_m,declined_y_m,declined_yaw_rad,rival_x_m,rival_y_m,rival_yaw_rad\n");
+        "ref_free_space,est_free_space,declined_x_m,declined_y_m,declined_yaw_rad,rival_x_m,rival_y_m,rival_yaw_rad,"
+        "est_overlap,est_score\n");
   }
   std::printf(
       "| method | recovered | converged | converged but wrong | mean err m (recovered) | median ms | p95 ms |\n");
@@ -297,11 +304,12 @@ int runRelations(const RelationsOptions &options) {
         const Eigen::Matrix3d &c = match.covariance;
         std::fprintf(csv,
                      "%s,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%d,%d,%.4f,%.3f,%.4f,%s,\"%s\","
-                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f,%s\n",
+                     "%.4e,%.4e,%.4e,%.4e,%.4e,%.4e,%.4f,%.4f,%s,%s\n",
                      name.c_str(), pair.first, pair.second, r.t1, r.t2, r.motion.x, r.motion.y, r.motion.yaw, t(0, 2),
                      t(1, 2), yaw, match.converged ? 1 : 0, match.converged && ok ? 1 : 0, et, er, match.milliseconds,
                      match.converged ? "converged" : match.status.c_str(), match.reason.c_str(), c(0, 0), c(0, 1),
-                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space, rejectedFields(match).c_str());
+                     c(0, 2), c(1, 1), c(1, 2), c(2, 2), ref_free_space, est_free_space, rejectedFields(match).c_str(),
+                     scoreFields(match).c_str());
       }
       if (match.converged && !match.covariance.isZero())
         nees.push_back(evaluation::normalisedErrorSquared(io::toPose(t), r.motion, match.covariance,

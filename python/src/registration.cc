@@ -90,6 +90,12 @@ void bindRegistration(py::module_ &m) {
           },
           "contour methods, ambiguous: the distinct motions that fit the scans about as well, each a "
           "(3 x 3 transform, 3 x 3 covariance of x, y, yaw) pair; empty for every other status")
+      .def_readonly("overlap", &odometry::MatchResult::overlap,
+                    "the contour method, converged: the share of the source contour on the target contour; "
+                    "None otherwise")
+      .def_readonly("score", &odometry::MatchResult::score,
+                    "the contour method, converged: the judge's score of the answer, its overlap less the share of "
+                    "both contours in the other scan's free space; None otherwise")
       .def_readonly("inliers", &odometry::MatchResult::inliers,
                     "contour methods: the special-point pairs the motion rests on")
       .def_readonly("milliseconds", &odometry::MatchResult::milliseconds, "wall time of the registration")

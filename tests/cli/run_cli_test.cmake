@@ -214,7 +214,9 @@ endforeach()
 # relation that claims a rival's motion, the count finds it.
 expect_run(0 relations ${LOG} --gt ${GT} --methods contour --pairs-csv ${WORK_DIR}/rivals.csv)
 expect_match("${LAST_OUT}" "contour: the judge weighed a distinct rival on [1-9][0-9]* of 98 converged pairs; 0 of those rivals lie within the tolerance")
-file(STRINGS ${WORK_DIR}/rivals.csv rows REGEX "^contour,[^\"]*,converged,\"\",.*,-?[0-9.]+,-?[0-9.]+,-?[0-9.]+$")
+# A converged row ends with the rival and the answer's overlap and score (the score at most the overlap).
+file(STRINGS ${WORK_DIR}/rivals.csv rows
+     REGEX "^contour,[^\"]*,converged,\"\",.*,-?[0-9.]+,-?[0-9.]+,-?[0-9.]+,[0-9.]+,-?[0-9.]+$")
 list(GET rows 0 row)
 string(REPLACE "," ";" fields "${row}")
 list(GET fields 3 t1)
@@ -222,6 +224,11 @@ list(GET fields 4 t2)
 list(GET fields 29 rival_x)
 list(GET fields 30 rival_y)
 list(GET fields 31 rival_yaw)
+list(GET fields 32 overlap)
+list(GET fields 33 score)
+if(score GREATER overlap OR overlap GREATER 1 OR NOT overlap GREATER 0.5)
+  message(FATAL_ERROR "relations: overlap ${overlap}, score ${score} in ${row}")
+endif()
 file(WRITE ${WORK_DIR}/rival.relations "${t1} ${t2} ${rival_x} ${rival_y} 0 0 0 ${rival_yaw}\n")
 expect_run(0 relations ${LOG} --relations ${WORK_DIR}/rival.relations --methods contour)
 expect_match("${LAST_OUT}" "contour: the judge weighed a distinct rival on 1 of 1 converged pairs; 1 of those rivals lie within the tolerance")
@@ -255,8 +262,9 @@ expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --metho
 expect_match("${LAST_ERR}" "contour failed: low_overlap: 2; the motion it declined was within the tolerance on 1")
 file(STRINGS ${WORK_DIR}/declined.csv rows REGEX "^contour,")
 foreach(row IN LISTS rows)
-  # The declined motion, then the rival's empty fields: a declined pair has no converged answer to rival.
-  if(NOT row MATCHES ",low_overlap,.*,(-?[0-9.]+),(-?[0-9.]+),(-?[0-9.]+),,,$")
+  # The declined motion, then the rival's empty fields and the answer's empty overlap and score:
+  # a declined pair has no converged answer to rival or score.
+  if(NOT row MATCHES ",low_overlap,.*,(-?[0-9.]+),(-?[0-9.]+),(-?[0-9.]+),,,,,$")
     message(FATAL_ERROR "relations: no declined motion in ${row}")
   endif()
   if(CMAKE_MATCH_1 LESS 0.2 OR CMAKE_MATCH_1 GREATER 0.3)

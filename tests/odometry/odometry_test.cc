@@ -573,9 +573,11 @@ TEST(ScanMatcher, EveryMethodRegistersAPairOfTheRoom) {
   EXPECT_EQ(makeScanMatcher("no-such-method"), nullptr);
 }
 
-// A covariance comes only with the estimate it describes: the contour method's; contour+icp's
-// ICP moves the contour stage's estimate, and ICP gives none.
-TEST(ScanMatcher, ACovarianceComesOnlyWithTheEstimateItDescribes) {
+// A covariance, and the judge's overlap and score, come only with the estimate they describe:
+// the contour method's converged one; contour+icp's ICP moves the contour stage's estimate, and
+// ICP gives none. A pair of the room 0.1 m apart shares nearly all of its contour and puts none
+// of it in the other scan's free space.
+TEST(ScanMatcher, ACovarianceAndAScoreComeOnlyWithTheEstimateTheyDescribe) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const simulation::World world = simulation::makeFurnishedRoom();
   const LaserScan target = test::scanFrom(world, test::pose2d(0.0, 0.0, 0.0), 0.01);
@@ -583,12 +585,22 @@ TEST(ScanMatcher, ACovarianceComesOnlyWithTheEstimateItDescribes) {
   const MatchResult contour = makeScanMatcher("contour")->match(target, source);
   ASSERT_TRUE(contour.converged);
   EXPECT_EQ(contour.covariance.llt().info(), Eigen::Success);
+  ASSERT_TRUE(contour.overlap.has_value() && contour.score.has_value());
+  EXPECT_GT(*contour.overlap, 0.8);
+  EXPECT_LE(*contour.overlap, 1.0);
+  EXPECT_NEAR(*contour.score, *contour.overlap, 0.01);  // nothing in the other scan's free space
   for (const std::string name : {"contour+icp", "icp"}) {
     const MatchResult result = makeScanMatcher(name)->match(target, source);
     ASSERT_TRUE(result.converged) << name;
     EXPECT_TRUE(result.covariance.isZero()) << name;
     EXPECT_FALSE(result.pinned.has_value()) << name;
+    EXPECT_FALSE(result.overlap.has_value() || result.score.has_value()) << name;
   }
+  LaserScan empty = source;
+  for (float &r : empty.ranges) r = std::nanf("");
+  const MatchResult declined = makeScanMatcher("contour")->match(target, empty);
+  ASSERT_FALSE(declined.converged);
+  EXPECT_FALSE(declined.overlap.has_value() || declined.score.has_value());
 }
 
 }  // namespace

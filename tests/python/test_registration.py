@@ -121,6 +121,14 @@ def test_same_answers_as_the_command_line_tool(tool, tmp_path, bundled_log):
         x, y, yaw = result.pose
         assert abs(x - float(row["est_x_m"])) < 1e-4 and abs(y - float(row["est_y_m"])) < 1e-4, row
         assert abs(yaw - float(row["est_yaw_rad"])) < 1e-5, row
+        if result.score is None:
+            assert row["est_score"] == "" and row["est_overlap"] == "", row
+        else:
+            assert abs(result.score - float(row["est_score"])) < 1e-4, row
+            assert abs(result.overlap - float(row["est_overlap"])) < 1e-4, row
+            assert result.score <= result.overlap <= 1.0, row
+    assert any(row["est_score"] for row in rows if row["method"] == "contour" and row["converged"] == "1")
+    assert not any(row["est_score"] for row in rows if row["method"] == "icp")
 
 
 def test_threads_give_the_same_answers_as_one_thread(bundled_log):

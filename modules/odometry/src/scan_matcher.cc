@@ -196,6 +196,10 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
     if (static_cast<const Registration *>(contour_) == registration_.get()) {
       result.covariance = contour_->getCovariance();
       result.pinned = contour_->getResult().pinned;
+      if (result.converged) {
+        result.overlap = contour_->getResult().overlap;
+        result.score = contour_->getResult().score;
+      }
     }
     if (contour_->getResult().rejected && contour_->hasConverged() == result.converged)
       result.rejected = contour_->getResult().rejected->transform;

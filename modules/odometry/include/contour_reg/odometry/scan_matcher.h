@@ -42,6 +42,11 @@ struct MatchResult {
   /// moves the contour stage's estimate away from what its covariance describes).
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   std::size_t inliers = 0;  ///< contour methods: the special-point pairs the motion rests on (0 otherwise)
+  /// The contour method, converged: the share of the source contour the refinement paired
+  /// (RegistrationResult::overlap) and the judge's score of the answer, that overlap less the
+  /// share of both contours in the other scan's free space (RegistrationResult::score). None
+  /// otherwise (not converged, other methods, contour+icp, whose ICP moves the estimate).
+  std::optional<double> overlap, score;
   /// The contour method: what the scans pin when they leave one direction free (RegistrationResult::pinned).
   std::optional<PinnedMotion> pinned;
   /// Contour methods: the best motion the judge weighed and did not take
