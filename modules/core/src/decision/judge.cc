@@ -39,32 +39,23 @@ bool onlyAlongWeakestDirection(const RefinementResult &best, const Eigen::Matrix
 // stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
 constexpr double kMostOfTheContour = 0.5;
 
-// Whether `moved`, where a probe settled, fits worse than the best on the part of the source
-// within the target's reach under both (RangeView::reaches, and not hidden behind what the
-// target saw): the share of that part on the target contour less the free space's
-// contradiction, lower by more than the tie. Moved along a corridor, the source's walls reach
-// past where the target's range ended or before its field of view began: the overlap drops
-// there though nothing the target could see disagrees. Such ends of the view move with the
-// sensor and pin no motion.
-bool fitsWorseWithinReach(const RefinementResult &best, const RefinementResult &moved, const RegistrationParams &params,
-                          RegistrationBuffers &buffers, Scorer &scorer) {
-  const RangeView &view = scorer.targetView();
-  const auto seen = [&](const Eigen::Vector2d &point, int &on_contour) {
-    on_contour = buffers.refiner.pairs(point, params.refinement.min_distance);
-    return on_contour ||
-           (view.reaches(point) && view.sightOf(point, params.free_space.margin) != RangeView::Sight::kHidden);
-  };
-  int shared = 0, on_best = 0, on_moved = 0;
-  for (const Eigen::Vector2d &sample : buffers.samples) {
-    int a = 0, b = 0;
-    if (!seen(transformPoint(best.transform, sample), a) || !seen(transformPoint(moved.transform, sample), b)) continue;
-    ++shared;
-    on_best += a;
-    on_moved += b;
-  }
-  if (shared == 0) return false;
-  return static_cast<double>(on_moved) / shared - scorer.contradiction(moved.transform) <=
-         static_cast<double>(on_best) / shared - scorer.contradiction(best.transform) - kScoreTie;
+// Whether `moved`, where a probe settled and scored `moved_score`, fits worse than the best on
+// the part of the source within the target's reach under both (sharedViewFit,
+// TargetSight::kWithinReach): the share of that part on the target contour less the free
+// space's contradiction, lower by more than the tie. Moved along a corridor, the source's
+// walls reach past where the target's range ended or before its field of view began: the
+// overlap drops there though nothing the target could see disagrees. Such ends of the view
+// move with the sensor and pin no motion.
+bool fitsWorseWithinReach(ScoredMotion &best, const RefinementResult &moved, double moved_score,
+                          const RegistrationParams &params, RegistrationBuffers &buffers, Scorer &scorer) {
+  const SharedViewFit fit =
+      sharedViewFit(buffers.samples, buffers.refiner, scorer.targetView(), best.refined.transform, moved.transform,
+                    params.refinement.min_distance, params.free_space.margin, TargetSight::kWithinReach);
+  if (!(fit.shared > 0.0)) return false;
+  // A score is the overlap less the contradiction: each motion's contradiction is known from it.
+  const double best_contradiction = best.refined.overlap - scorer.score(best);
+  const double moved_contradiction = moved.overlap - moved_score;
+  return fit.second - moved_contradiction <= fit.first - best_contradiction - kScoreTie;
 }
 
 // Whether the best is pinned along its weakest direction (RefinementResult::weakest_direction):
@@ -91,7 +82,8 @@ bool settlesBack(Judged &found, const RegistrationParams &params, RegistrationBu
     if (left <= kSettledBack * probe) continue;
     const double score = scorer.score(r);
     found.consider(r, score);
-    if (score > scorer.score(found.best) - kScoreTie || !fitsWorseWithinReach(best, r, params, buffers, scorer))
+    if (score > scorer.score(found.best) - kScoreTie ||
+        !fitsWorseWithinReach(found.best, r, score, params, buffers, scorer))
       return false;
   }
   return true;

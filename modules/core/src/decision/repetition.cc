@@ -128,7 +128,7 @@ void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, co
 
 SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
                             const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
-                            double on_contour, double hidden_margin) {
+                            double on_contour, double hidden_margin, TargetSight sight) {
   SharedViewFit fit;
   if (samples.empty()) return fit;
   // Whether a point (target frame) lies on the target contour, and whether the target saw its
@@ -141,8 +141,10 @@ SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const C
   const auto spot = [&](const Eigen::Vector2d &point) {
     const bool on = refiner.pairs(point, on_contour);
     if (on) return Spot{true, true};
-    const RangeView::Sight sight = target_view.sightOf(point, hidden_margin);
-    return Spot{false, sight != RangeView::Sight::kNoEvidence && sight != RangeView::Sight::kHidden};
+    const RangeView::Sight seen = target_view.sightOf(point, hidden_margin);
+    const bool in_view =
+        sight == TargetSight::kWithinReach ? target_view.reaches(point) : seen != RangeView::Sight::kNoEvidence;
+    return Spot{false, in_view && seen != RangeView::Sight::kHidden};
   };
   int shared = 0, on_first = 0, on_second = 0;
   for (const Eigen::Vector2d &p : samples) {

@@ -52,12 +52,17 @@ struct SharedViewFit {
   double second = 0.0;  ///< the same for the second
 };
 
+/// Where the target could have seen a sample off its contour: at a bearing where it has a
+/// return, or anywhere within its reach (RangeView::reaches: its field of view and range, the
+/// gaps between its returns included).
+enum class TargetSight { kReturnAtBearing, kWithinReach };
+
 /// The fit of `first` and `second` (source to target) on the shared view of the source
 /// `samples`: a sample lies on the target contour when the refiner pairs it within
-/// `on_contour` m; the target saw it when it lies on the target contour, or when the target
-/// has a return at its bearing and the sample lies no more than `hidden_margin` m behind it.
+/// `on_contour` m; the target saw it when it lies on the target contour, or where `sight`
+/// says the target could have seen it and no more than `hidden_margin` m behind what it saw.
 SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
                             const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
-                            double on_contour, double hidden_margin);
+                            double on_contour, double hidden_margin, TargetSight sight = TargetSight::kReturnAtBearing);
 
 }  // namespace contour_reg::decision
