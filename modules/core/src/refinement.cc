@@ -117,9 +117,21 @@ struct BearingIndex {
   // Nearest point to p among those near p's bearing; -1 when none within max_distance: walks
   // outwards from p's bearing while the points get closer, and four points more.
   int nearest(const Eigen::Vector2d &p, double max_distance) const {
+    long at = -1;
+    return nearest(p, max_distance, at);
+  }
+
+  // The same, with `at` the first point at or above p's bearing as found for a point near p
+  // (negative: none), set to p's: a point that moved a little finds it a step or two away,
+  // without the buckets.
+  int nearest(const Eigen::Vector2d &p, double max_distance, long &at) const {
     if (points.empty()) return -1;
-    const long start = buckets.firstAtOrAbove(bearing, approximateAtan2(p.y(), p.x()));
+    const double b = approximateAtan2(p.y(), p.x());
     const long size = static_cast<long>(points.size());
+    long start = at < 0 ? buckets.firstAtOrAbove(bearing, b) : std::min(at, size);
+    while (start > 0 && bearing[start - 1] >= b) --start;
+    while (start < size && bearing[start] < b) ++start;
+    at = start;
     const Eigen::Vector2d *point = points.data();
     long best = -1;
     double best_d2 = max_distance * max_distance;
@@ -270,6 +282,7 @@ struct ContourRefiner::Index {
   int stretches = 0;
   std::vector<Eigen::Vector3d> stretch_gradient;
   std::vector<int> stretch_first, stretch_span;  // numberStretches' working memory
+  std::vector<long> search_start;                // refine's working memory: each sample's last search start
 
   void numberStretches(double length) {
     std::vector<int> &first = stretch_first, &span = stretch_span;
@@ -350,6 +363,8 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
   stretch_gradient.resize(by_stretches ? work.stretches : 0);
   const int *stretch = work.stretch.data();
   Eigen::Vector3d last_step = Eigen::Vector3d::Zero(), step_before = Eigen::Vector3d::Zero();
+  std::vector<long> &start = work.search_start;
+  start.assign(samples.size(), -1);
   bool stopped = false;
   for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
     result.iterations = iteration + 1;
@@ -365,10 +380,12 @@ RefinementResult ContourRefiner::refine(const std::vector<Eigen::Vector2d> &samp
     int pairs = 0;
     stretches_counted = by_stretches && distance <= params.min_distance;
     if (stretches_counted) std::fill(stretch_gradient.begin(), stretch_gradient.end(), Eigen::Vector3d::Zero());
-    for (const Eigen::Vector2d &p : samples) {
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const Eigen::Vector2d &p = samples[i];
       const Eigen::Vector2d rotated = rotation * p;
       const Eigen::Vector2d moved = rotated + translation;
-      const int j = index.nearest(moved, distance);
+      // Each sample's search starts from where it started in the last pass.
+      const int j = index.nearest(moved, distance, start[i]);
       Eigen::Vector2d normal;
       if (j < 0 || !index.normalAt(j, normal)) continue;
       const double residual = normal.dot(moved - index.points[j]);
