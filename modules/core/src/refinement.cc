@@ -128,9 +128,7 @@ struct BearingIndex {
     if (points.empty()) return -1;
     const double b = approximateAtan2(p.y(), p.x());
     const long size = static_cast<long>(points.size());
-    long start = at < 0 ? buckets.firstAtOrAbove(bearing, b) : std::min(at, size);
-    while (start > 0 && bearing[start - 1] >= b) --start;
-    while (start < size && bearing[start] < b) ++start;
+    const long start = at < 0 ? buckets.firstAtOrAbove(bearing, b) : BearingBuckets::firstAtOrAboveFrom(bearing, b, at);
     at = start;
     const Eigen::Vector2d *point = points.data();
     long best = -1;

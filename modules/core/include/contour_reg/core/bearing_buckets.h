@@ -35,9 +35,15 @@ class BearingBuckets {
     const long last = static_cast<long>(first_.size()) - 1;
     // Clamped before the conversion, which is undefined out of range; NaN: bucket 0.
     const long k = at >= static_cast<double>(last) ? last : at >= 0.0 ? static_cast<long>(at) : 0;
-    long j = first_[k];
+    return firstAtOrAboveFrom(bearings, b, first_[k]);  // b may have rounded into the next bucket
+  }
+
+  /// The same, walked to from `from`, the answer for a bearing near b: a step or two for a
+  /// bearing that moved a little, without the buckets.
+  static long firstAtOrAboveFrom(const std::vector<double> &bearings, double b, long from) {
     const long size = static_cast<long>(bearings.size());
-    while (j > 0 && bearings[j - 1] >= b) --j;  // b rounded into the next bucket
+    long j = std::min(std::max(from, 0L), size);
+    while (j > 0 && bearings[j - 1] >= b) --j;
     while (j < size && bearings[j] < b) ++j;
     return j;
   }
