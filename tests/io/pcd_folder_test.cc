@@ -104,6 +104,25 @@ TEST(PcdFolder, DataThatReadsAsAHeaderLineIsSkipped) {
   EXPECT_NE(log.report.problems.front().find("header line"), std::string::npos) << log.report.problems.front();
 }
 
+// Found by tests/fuzz: PCL's reader skips any number of comment lines after the DATA line
+// before the keyword, so binary data of many short lines that begin with '#' and then a
+// FIELDS line overran its buffers just the same.
+TEST(PcdFolder, AHeaderLineAfterManyCommentLinesInTheDataIsSkipped) {
+  test::TempDir dir;
+  savePcd(dir.file("1.pcd"), sampleScan(0.0), false);
+  const std::string header =
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 4\nHEIGHT 1\nPOINTS 4\nDATA binary\n";
+  std::string data;
+  for (int k = 0; k < 100; ++k) data += "#\xf9\n";
+  dir.write("2.pcd", header + data + "FIELDS\n" + std::string(1, '\0'));
+  const ScanLog log = readPcdFolder(dir.path().string());
+  EXPECT_EQ(log.entries.size(), 1u);
+  EXPECT_EQ(log.report.skipped, 1u);
+  ASSERT_EQ(log.report.problems.size(), 1u);
+  EXPECT_NE(log.report.problems.front().find("2.pcd:109"), std::string::npos) << log.report.problems.front();
+  EXPECT_NE(log.report.problems.front().find("header line 'FIELDS'"), std::string::npos) << log.report.problems.front();
+}
+
 TEST(PcdFolder, AFolderWithoutScansIsAnError) {
   test::TempDir dir;
   EXPECT_THROW(readPcdFolder(dir.path().string()), ReadError);

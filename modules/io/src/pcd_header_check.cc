@@ -78,13 +78,15 @@ std::string checkPcdHeader(const std::string &path, std::size_t &line) {
     return "POINTS differs from WIDTH x HEIGHT";
   if (header.count("VIEWPOINT") && header["VIEWPOINT"].size() != 7) return "VIEWPOINT needs 7 numbers";
   const std::size_t header_line = line;
-  // PCL's header reader goes on after the DATA line over empty lines, comments and VERSION
-  // lines, and reads any line that begins with a header keyword as one, whatever the data.
+  // PCL's header reader goes on after the DATA line over any number of empty lines, comments
+  // and VERSION lines, and reads any line that begins with a header keyword as one, whatever
+  // the data; a line of blanks or of anything else ends it.
   const std::streampos data_start = in.tellg();
-  for (std::size_t after = 0; after < kMaxHeaderLines && std::getline(in, text); ++after) {
+  for (std::size_t after = 0; std::getline(in, text); ++after) {
+    if (text.empty()) continue;
     std::istringstream fields(text);
     std::string key;
-    if (!(fields >> key)) continue;
+    if (!(fields >> key)) break;
     if (key[0] == '#' || key.rfind("VERSION", 0) == 0) continue;
     static const char *pcl_keys[] = {"FIELDS", "COLUMNS", "SIZE",      "TYPE",   "COUNT",
                                      "WIDTH",  "HEIGHT",  "VIEWPOINT", "POINTS", "DATA"};
