@@ -239,8 +239,13 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
   if (buffers.repetition.shifted.empty()) return true;
   const double best_score = scorer.score(found.best);
   const double against_best = best.overlap - best_score;
+  // A refinement that has come a quarter of the distinct-motion distance near the best leads
+  // back to it: stop there.
+  const auto near_best = [&](const Eigen::Matrix3d &m) {
+    return motionDistance(best.transform, m) <= kDistinctMotions / 4;
+  };
   for (const Eigen::Matrix3d &start : buffers.repetition.shifted) {
-    const RefinementResult rival = buffers.refiner.refine(buffers.samples, start, params.refinement);
+    const RefinementResult rival = buffers.refiner.refine(buffers.samples, start, params.refinement, near_best);
     if (motionDistance(rival.transform, best.transform) <= kDistinctMotions) continue;
     const double score = scorer.score(rival);
     found.consider(rival, score);
