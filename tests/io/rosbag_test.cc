@@ -1,4 +1,6 @@
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -67,6 +69,62 @@ TEST(Rosbag, AWrittenBagReadsBackWithBeamTimingAndOdometry) {
   const ScanLog with_period = readLog(path, options);
   EXPECT_FLOAT_EQ(static_cast<float>(with_period.entries[0].scan.time_increment), 0.01f);
   EXPECT_NEAR(with_period.entries[1].scan.time_increment, 0.1 * 0.5 / (2 * M_PI), 1e-9);
+}
+
+// The bytes of the file at `path`, and the file written back from them.
+std::string bytesOf(const std::string &path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::string &path, const std::string &bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// rosbag_storage trusts the lengths in a bag's records: a message record whose header field
+// claims more bytes than the chunk holds made it read out of bounds. Such a message is not
+// read, and named with the chunk; the messages before it in the chunk are.
+TEST(Rosbag, AMessageWhoseRecordIsCorruptIsSkippedAndNamed) {
+  if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
+  test::TempDir dir;
+  const std::string path = (dir.path() / "corrupt.bag").string();
+  writeRosbag(path, timedLog());
+  const ScanLog intact = readLog(path);
+  // Each message record's header has the field "op" of the message kind, 4 bytes long.
+  std::string bytes = bytesOf(path);
+  const std::string op_field("\x04\0\0\0op=\x02", 8);
+  const std::size_t last = bytes.rfind(op_field);
+  ASSERT_NE(last, std::string::npos);
+  bytes.replace(last, 4, "\xff\xff\xff\x7f");
+  writeBytes(path, bytes);
+  const ScanLog read = readLog(path);
+  EXPECT_EQ(read.entries.size() + read.wheel_odometry.size() + 1, intact.entries.size() + intact.wheel_odometry.size());
+  ASSERT_EQ(read.report.problems.size(), 1u);
+  EXPECT_NE(read.report.problems.front().find("not read"), std::string::npos) << read.report.problems.front();
+  EXPECT_NE(read.report.problems.front().find("is corrupt"), std::string::npos) << read.report.problems.front();
+}
+
+// A chunk that does not decompress (here one whose stated size is smaller than its data) was
+// decompressed once more for every message in it, which takes minutes on a real bag. Its
+// messages are not read, and named with the chunk.
+TEST(Rosbag, AChunkThatDoesNotDecompressIsNamed) {
+  if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
+  test::TempDir dir;
+  const std::string path = (dir.path() / "corrupt.bag").string();
+  writeRosbag(path, timedLog());
+  std::string bytes = bytesOf(path);
+  // The chunk record's header has the field "size", the chunk's bytes decompressed.
+  const std::string size_field("\x09\0\0\0size=", 9);
+  const std::size_t at = bytes.find(size_field);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at + size_field.size(), 4, std::string("\x10\0\0\0", 4));
+  writeBytes(path, bytes);
+  try {
+    readLog(path);
+    FAIL() << "no scan can be read";
+  } catch (const ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find("a chunk that does not decompress"), std::string::npos) << error.what();
+  }
 }
 
 // The wheel odometry logged between the scans (ten samples a scan here) is written to /odom

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "log_assembly.h"
+#include "rosbag_check.h"
 
 #ifdef CONTOUR_REG_HAVE_ROSBAG
 #include <nav_msgs/Odometry.h>
@@ -124,6 +125,8 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   std::vector<StampedPose> odometry;
   TransformTree tree;
   std::string scan_frame, base_frame;  // of the first scan and the first odometry message
+  const detail::BagCheck check = detail::checkBagStructure(path);
+  if (!check.fatal.empty()) throw ReadError(path + ": not a readable ROS 1 bag: " + check.fatal);
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
     const std::string scan_topic = topicToRead(bag, path, options.scan_topic, "sensor_msgs/LaserScan");
@@ -139,6 +142,14 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
       ++index;
       ++log.report.lines;
       const std::string where = path + " (" + message.getTopic() + ")";
+      const ros::Time stamp = message.getTime();
+      const std::uint64_t key = detail::stampKey(stamp.sec, stamp.nsec);
+      auto unsafe = check.unsafe.find({message.getTopic(), key});
+      if (unsafe == check.unsafe.end()) unsafe = check.unsafe.find({std::string(), key});
+      if (unsafe != check.unsafe.end()) {
+        log.report.add(where, index, "not read: " + unsafe->second);
+        continue;
+      }
       try {
         if (message.getTopic() == scan_topic) {
           auto scan = message.instantiate<sensor_msgs::LaserScan>();
