@@ -127,6 +127,28 @@ TEST(Rosbag, AChunkThatDoesNotDecompressIsNamed) {
   }
 }
 
+// ROS's deserialization sizes an array from the length a message declares before it checks
+// the message holds it: a corrupt length of the ranges asked for gigabytes. The scan is not
+// read, and named.
+TEST(Rosbag, AScanThatDeclaresMoreRangesThanItHoldsIsSkippedAndNamed) {
+  if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
+  test::TempDir dir;
+  const std::string path = (dir.path() / "corrupt.bag").string();
+  writeRosbag(path, timedLog());
+  std::string bytes = bytesOf(path);
+  // The first scan's ranges: their count, 4, then 1 and 2 as float32.
+  const std::string ranges("\x04\0\0\0\0\0\x80\x3f\0\0\0\x40", 12);
+  const std::size_t at = bytes.find(ranges);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, 4, std::string("\0\0\0\x04", 4));  // 64 M ranges: 256 MB
+  writeBytes(path, bytes);
+  const ScanLog read = readLog(path);
+  EXPECT_EQ(read.entries.size(), timedLog().entries.size() - 1);
+  ASSERT_EQ(read.report.problems.size(), 1u);
+  EXPECT_NE(read.report.problems.front().find("an array longer than the message"), std::string::npos)
+      << read.report.problems.front();
+}
+
 // The wheel odometry logged between the scans (ten samples a scan here) is written to /odom
 // and read back whole, as the log's wheel_odometry.
 TEST(Rosbag, WheelOdometryBetweenTheScansReadsBack) {

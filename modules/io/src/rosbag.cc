@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <stdexcept>
+#include <vector>
 
 #include "log_assembly.h"
 #include "rosbag_check.h"
@@ -14,6 +17,7 @@
 #include <rosbag/view.h>
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
+#include <boost/make_shared.hpp>
 #endif
 
 #include <map>
@@ -115,6 +119,56 @@ std::string beamTimingProblem(const sensor_msgs::LaserScan &message) {
   return {};
 }
 
+// ROS's deserialization sizes an array from the length the message declares before it checks
+// that the message holds that many elements: a corrupt length asks for gigabytes. These read a
+// message's bytes first and check the lengths of its arrays against them.
+
+// The 4-byte length at `at` of `bytes`, and `at` moved past it; false past the end.
+bool lengthAt(const std::vector<std::uint8_t> &bytes, std::size_t &at, std::uint64_t &length) {
+  if (bytes.size() < 4 || at > bytes.size() - 4) return false;
+  std::uint32_t value = 0;
+  std::memcpy(&value, bytes.data() + at, 4);
+  length = value;
+  at += 4;
+  return true;
+}
+
+// Whether `bytes` (a serialized sensor_msgs/LaserScan) holds the ranges and intensities it declares.
+bool laserScanFits(const std::vector<std::uint8_t> &bytes) {
+  std::size_t at = 12;  // the header's sequence number and stamp
+  std::uint64_t length = 0;
+  if (!lengthAt(bytes, at, length) || length > bytes.size() - at) return false;  // frame_id
+  at += length + 7 * 4;                      // angles, times and range limits: seven float32
+  for (int array = 0; array < 2; ++array) {  // ranges, intensities: float32 each
+    if (!lengthAt(bytes, at, length) || 4 * length > bytes.size() - at) return false;
+    at += 4 * length;
+  }
+  return true;
+}
+
+// Whether `bytes` (a serialized tf2_msgs/TFMessage) can hold the transforms it declares: each
+// takes at least 76 bytes (two empty frame names, stamp, sequence number, seven float64).
+bool transformsFit(const std::vector<std::uint8_t> &bytes) {
+  std::size_t at = 0;
+  std::uint64_t count = 0;
+  return lengthAt(bytes, at, count) && 76 * count <= bytes.size() - at;
+}
+
+// `message` as a T: null when it is of another type; throws when `fits` says its bytes do not
+// hold what they declare, or they do not deserialize.
+template <typename T>
+boost::shared_ptr<T> decoded(const rosbag::MessageInstance &message, bool (*fits)(const std::vector<std::uint8_t> &)) {
+  if (message.getMD5Sum() != ros::message_traits::MD5Sum<T>::value() && message.getMD5Sum() != "*") return nullptr;
+  std::vector<std::uint8_t> bytes(message.size());
+  ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  message.write(out);
+  if (!fits(bytes)) throw std::runtime_error("an array longer than the message");
+  auto decoded = boost::make_shared<T>();
+  ros::serialization::IStream in(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  ros::serialization::deserialize(in, *decoded);
+  return decoded;
+}
+
 }  // namespace
 
 bool rosbagSupported() { return true; }
@@ -137,6 +191,10 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
     const std::vector<std::string> tf_topics = topicsOfType(bag, "tf2_msgs/TFMessage");
     topics.insert(topics.end(), tf_topics.begin(), tf_topics.end());
     rosbag::View view(bag, rosbag::TopicQuery(topics));
+    // The connection numbers of each topic, as the bag's index names them.
+    std::map<std::string, std::vector<std::uint32_t>> connections;
+    for (const rosbag::ConnectionInfo *connection : view.getConnections())
+      connections[connection->topic].push_back(connection->id);
     std::size_t index = 0;
     for (const rosbag::MessageInstance &message : view) {
       ++index;
@@ -144,15 +202,17 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
       const std::string where = path + " (" + message.getTopic() + ")";
       const ros::Time stamp = message.getTime();
       const std::uint64_t key = detail::stampKey(stamp.sec, stamp.nsec);
-      auto unsafe = check.unsafe.find({message.getTopic(), key});
-      if (unsafe == check.unsafe.end()) unsafe = check.unsafe.find({std::string(), key});
-      if (unsafe != check.unsafe.end()) {
-        log.report.add(where, index, "not read: " + unsafe->second);
+      const auto unsafe = std::find_if(connections[message.getTopic()].begin(), connections[message.getTopic()].end(),
+                                       [&](std::uint32_t id) {
+                                         return check.unsafe.count({id, key}) > 0;
+                                       });
+      if (unsafe != connections[message.getTopic()].end()) {
+        log.report.add(where, index, "not read: " + check.unsafe.at({*unsafe, key}));
         continue;
       }
       try {
         if (message.getTopic() == scan_topic) {
-          auto scan = message.instantiate<sensor_msgs::LaserScan>();
+          auto scan = decoded<sensor_msgs::LaserScan>(message, laserScanFits);
           if (!scan) {
             log.report.add(where, index, "not a sensor_msgs/LaserScan");
           } else if (scan->ranges.size() < 2 || scan->ranges.size() > options.max_beams) {
@@ -170,7 +230,7 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
               log.report.add(where, index, timing + ": the scan is read without beam timing");
           }
         } else if (message.getTopic() != odometry_topic) {
-          if (auto transforms = message.instantiate<tf2_msgs::TFMessage>()) tree.add(*transforms);
+          if (auto transforms = decoded<tf2_msgs::TFMessage>(message, transformsFit)) tree.add(*transforms);
         } else if (auto odom = message.instantiate<nav_msgs::Odometry>()) {
           if (base_frame.empty()) base_frame = frameName(odom->child_frame_id);
           const auto &pose = odom->pose.pose;

@@ -2,7 +2,9 @@
 
 #ifdef CONTOUR_REG_HAVE_ROSBAG
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -25,6 +27,8 @@ constexpr std::uint64_t kIndexEntryBytes = 12, kChunkInfoEntryBytes = 8;
 
 // A chunk larger than this decompressed, or a record's header larger than this, is taken as a
 // corrupt length (a header holds a few short fields; ROS refuses a field of a megabyte).
+constexpr std::uint64_t kMaxVersionLine = 4096;
+
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t(1) << 30, kMaxHeaderBytes = std::uint64_t(1) << 24;
 
 using Fields = std::map<std::string, std::string>;
@@ -93,19 +97,10 @@ std::string readRecord(Bytes &&bytes, std::uint64_t size, std::uint64_t at, Reco
   return "";
 }
 
-// Notes the topic of the connection record `record` in `topics`, by its connection number.
-void noteTopic(const Record &record, std::map<std::uint64_t, std::string> &topics) {
-  std::uint64_t connection = 0;
-  const auto topic = record.fields.find("topic");
-  if (numberField(record.fields, "conn", 4, connection).empty() && topic != record.fields.end())
-    topics[connection] = topic->second;
-}
-
 // The chunk `chunk` (its data in `compressed`) decompressed, walked record by record: the
 // starts of its message records into `messages`, up to the first record that does not fit (the
 // rest cannot be found). "" when all fit it exactly, else what is wrong.
-std::string checkChunk(const Record &chunk, std::vector<std::uint8_t> &compressed, std::set<std::uint64_t> &messages,
-                       std::map<std::uint64_t, std::string> &topics) {
+std::string checkChunk(const Record &chunk, std::vector<std::uint8_t> &compressed, std::set<std::uint64_t> &messages) {
   messages.clear();
   const auto compression = chunk.fields.find("compression");
   if (compression == chunk.fields.end()) return "a chunk without 'compression' field";
@@ -147,7 +142,6 @@ std::string checkChunk(const Record &chunk, std::vector<std::uint8_t> &compresse
       if (std::string problem = parseFields(records.data() + record.data_start, record.data_length, connection);
           !problem.empty())
         return fail("connection: " + problem);
-      noteTopic(record, topics);
     } else if (record.op != kMessageData) {
       return fail("a record of kind " + std::to_string(record.op));
     } else {
@@ -164,7 +158,7 @@ std::string checkChunk(const Record &chunk, std::vector<std::uint8_t> &compresse
 std::string checkIndex(const Record &index, const std::vector<std::uint8_t> &entries,
                        const std::set<std::uint64_t> &messages, const std::string &chunk_problem,
                        std::uint64_t chunk_position,
-                       std::map<std::pair<std::uint64_t, std::uint64_t>, std::string> &unsafe) {
+                       std::map<std::pair<std::uint32_t, std::uint64_t>, std::string> &unsafe) {
   std::uint64_t version = 0, connection = 0, count = 0;
   for (const auto &[name, value] :
        {std::pair<const char *, std::uint64_t *>{"ver", &version}, {"conn", &connection}, {"count", &count}})
@@ -175,10 +169,9 @@ std::string checkIndex(const Record &index, const std::vector<std::uint8_t> &ent
   for (std::uint64_t k = 0; k < count; ++k) {
     const std::uint8_t *entry = entries.data() + k * kIndexEntryBytes;
     if (messages.count(unsignedAt(entry + 8, 4))) continue;
-    const std::uint64_t stamp = stampKey(static_cast<std::uint32_t>(unsignedAt(entry, 4)),
-                                         static_cast<std::uint32_t>(unsignedAt(entry + 4, 4)));
+    const std::uint64_t stamp = stampKey(unsignedAt(entry, 4), unsignedAt(entry + 4, 4));
     unsafe.emplace(
-        std::make_pair(connection, stamp),
+        std::make_pair(static_cast<std::uint32_t>(connection), stamp),
         "byte " + std::to_string(chunk_position) + ": " +
             (chunk_problem.empty() ? "an index entry that points at no message of its chunk" : chunk_problem));
   }
@@ -195,10 +188,23 @@ BagCheck checkBagStructure(const std::string &path) {
   const auto end = in.tellg();
   if (end < 0) return check;
   const std::uint64_t size = static_cast<std::uint64_t>(end);
-  static const std::string magic = "#ROSBAG V2.0\n";
-  std::string start(magic.size(), '\0');
+  // rosbag_storage reads the version from the first line with this sscanf format, and the bag
+  // header record after it.
+  std::string line(std::min<std::uint64_t>(size, kMaxVersionLine), '\0');
   in.seekg(0);
-  if (!in.read(start.data(), static_cast<std::streamsize>(start.size())) || start != magic) return check;
+  if (!in.read(line.data(), static_cast<std::streamsize>(line.size()))) return check;
+  const std::size_t newline = line.find('\n');
+  if (newline == std::string::npos && size > kMaxVersionLine) {
+    check.fatal = "byte 0: a first line longer than a version line";
+    return check;
+  }
+  line.resize(std::min({newline, line.find('\0'), line.size()}));
+  char name[100];
+  int major = 0, minor = 0;
+  if (newline == std::string::npos || std::sscanf(line.c_str(), "#ROS%99s V%d.%d", name, &major, &minor) != 3 ||
+      major != 2 || minor != 0)
+    return check;
+  const std::uint64_t first = newline + 1;  // the bag header record
   const auto bytes = [&](std::uint64_t from, std::uint64_t count, std::vector<std::uint8_t> &out) {
     out.resize(count);
     in.clear();
@@ -211,13 +217,13 @@ BagCheck checkBagStructure(const std::string &path) {
   std::string chunk_problem;
   std::int64_t chunk_position = -1;
   std::uint64_t index_position = 0;
-  std::map<std::uint64_t, std::string> topics;                            // of each connection number
   std::map<std::pair<std::uint64_t, std::uint64_t>, std::string> unsafe;  // by connection and stamp
   std::vector<std::uint8_t> scratch, data;
   Record record;
-  for (std::uint64_t at = magic.size(); at < size; at = record.end) {
+  for (std::uint64_t at = first; at < size; at = record.end) {
     const auto fail = [&](const std::string &what) {
       check.fatal = "byte " + std::to_string(at) + ": " + what;
+      check.unsafe.clear();
       return check;
     };
     if (std::string problem = readRecord(bytes, size, at, record, scratch); !problem.empty()) return fail(problem);
@@ -225,7 +231,7 @@ BagCheck checkBagStructure(const std::string &path) {
     if (record.op != kMessageData && record.data_length > kMaxChunkBytes)
       return fail("a record of " + std::to_string(record.data_length) + " bytes");
     if (record.op != kMessageData && !bytes(record.data_start, record.data_length, data)) return fail("cannot read");
-    if (at == magic.size()) {
+    if (at == first) {
       std::uint64_t count = 0;
       if (record.op != kBagHeader) return fail("the first record is not the bag header");
       if (std::string problem = numberField(record.fields, "index_pos", 8, index_position); !problem.empty())
@@ -234,20 +240,19 @@ BagCheck checkBagStructure(const std::string &path) {
         if (std::string problem = numberField(record.fields, name, 4, count); !problem.empty())
           return fail("bag header: " + problem);
     } else if (record.op == kChunk) {
-      chunk_problem = checkChunk(record, data, chunk_messages, topics);
+      chunk_problem = checkChunk(record, data, chunk_messages);
       chunk_position = static_cast<std::int64_t>(at);
       chunks.insert(at);
     } else if (record.op == kIndexData) {
       if (chunk_position < 0) return fail("index data before any chunk");
       if (std::string problem = checkIndex(record, data, chunk_messages, chunk_problem,
-                                           static_cast<std::uint64_t>(chunk_position), unsafe);
+                                           static_cast<std::uint64_t>(chunk_position), check.unsafe);
           !problem.empty())
         return fail(problem);
     } else if (record.op == kConnection) {
       Fields connection;
       if (std::string problem = parseFields(data.data(), record.data_length, connection); !problem.empty())
         return fail("connection: " + problem);
-      noteTopic(record, topics);
     } else if (record.op == kChunkInfo) {
       std::uint64_t version = 0, position = 0, time = 0, count = 0;
       if (std::string problem = numberField(record.fields, "ver", 4, version); !problem.empty())
@@ -270,11 +275,7 @@ BagCheck checkBagStructure(const std::string &path) {
   // 0: an unindexed bag (a recording cut short), which rosbag_storage reports.
   if (index_position != 0 && index_position != size && !records.count(index_position)) {
     check.fatal = "the bag header's index position " + std::to_string(index_position) + " points at no record";
-    return check;
-  }
-  for (const auto &[where, why] : unsafe) {
-    const auto topic = topics.find(where.first);
-    check.unsafe.emplace(std::make_pair(topic == topics.end() ? std::string() : topic->second, where.second), why);
+    check.unsafe.clear();
   }
   return check;
 }
