@@ -25,10 +25,12 @@ constexpr std::uint8_t kMessageData = 0x02, kBagHeader = 0x03, kIndexData = 0x04
 // info's count of messages per connection.
 constexpr std::uint64_t kIndexEntryBytes = 12, kChunkInfoEntryBytes = 8;
 
-// A chunk larger than this decompressed, or a record's header larger than this, is taken as a
-// corrupt length (a header holds a few short fields; ROS refuses a field of a megabyte).
+// Bytes the version line may take ("#ROSBAG V2.0" takes 12).
 constexpr std::uint64_t kMaxVersionLine = 4096;
 
+// A record's data (a chunk's, decompressed or not) larger than kMaxChunkBytes, or a record's
+// header larger than kMaxHeaderBytes, is taken as a corrupt length (a header holds a few short
+// fields; ROS refuses a field of a megabyte).
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t(1) << 30, kMaxHeaderBytes = std::uint64_t(1) << 24;
 
 using Fields = std::map<std::string, std::string>;
