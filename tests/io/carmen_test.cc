@@ -1,4 +1,6 @@
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -164,6 +166,26 @@ TEST(Carmen, GzipLogsReadLikePlainOnes) {
   const ScanLog plain = readCarmen(dir.write("a.clf", text)), zipped = readCarmen(dir.file("a.clf.gz"));
   ASSERT_EQ(zipped.entries.size(), 2u);
   EXPECT_EQ(zipped.entries[1].scan.ranges, plain.entries[1].scan.ranges);
+}
+
+// A gzip log cut short (a copy that stopped) or corrupt ends where zlib stops; the reader said
+// nothing of it and read the scans before as the whole log. It names where the rest was lost.
+TEST(Carmen, AGzipLogCutShortIsNamed) {
+  TempDir dir;
+  std::string text;
+  for (int k = 0; k < 400; ++k) text += flaser(6, 1.5 + 0.001 * k, 0, 0, 0, 1.0 + k);
+  gzFile file = gzopen(dir.file("a.clf.gz").c_str(), "wb");
+  gzwrite(file, text.data(), static_cast<unsigned>(text.size()));
+  gzclose(file);
+  std::ifstream in(dir.file("a.clf.gz"), std::ios::binary);
+  const std::string zipped{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string path = dir.write("cut.clf.gz", zipped.substr(0, zipped.size() / 2));
+  const ScanLog read = readCarmen(path);
+  EXPECT_GT(read.entries.size(), 0u);
+  EXPECT_LT(read.entries.size(), 400u);
+  ASSERT_FALSE(read.report.problems.empty());
+  EXPECT_NE(read.report.problems.back().find("the rest is not read"), std::string::npos) << read.report.problems.back();
+  EXPECT_NE(read.report.problems.back().find(path + ":"), std::string::npos) << read.report.problems.back();
 }
 
 TEST(Carmen, WrittenLogsReadBackWithBeamGeometry) {

@@ -149,6 +149,13 @@ ScanLog readCarmen(const std::string &path, const CarmenOptions &options) {
     if (is_odometry) odometry.push_back(odom);
     if (laser_pose && !log.laser_pose) log.laser_pose = laser_pose;
   }
+  if (!reader.error().empty()) {
+    // Named past the first problems too: all that follows is lost.
+    ++log.report.skipped;
+    log.report.problems.push_back(path + ":" + std::to_string(reader.lineNumber() + 1) +
+                                  ": the compressed file is cut short or corrupt (" + reader.error() +
+                                  "): the rest is not read");
+  }
   if (log.entries.empty())
     throw ReadError(path + ": no usable scan in " + std::to_string(log.report.lines) + " lines" +
                     (log.report.problems.empty() ? "" : " (first problem: " + log.report.problems.front() + ")"));

@@ -17,11 +17,20 @@ bool LineReader::next(std::string &line) {
   if (!file_) return false;
   char buffer[1 << 14];
   bool got_any = false;
+  bool ended = true;
   while (gzgets(file_, buffer, sizeof buffer) != nullptr) {
     got_any = true;
     const std::size_t length = std::strlen(buffer);
     line.append(buffer, length);
-    if (length > 0 && buffer[length - 1] == '\n') break;
+    if (length > 0 && buffer[length - 1] == '\n') {
+      ended = false;
+      break;
+    }
+  }
+  if (ended && error_.empty()) {
+    int code = Z_OK;
+    const char *message = gzerror(file_, &code);
+    if (code != Z_OK && code != Z_STREAM_END) error_ = message ? message : "zlib error " + std::to_string(code);
   }
   if (!got_any) return false;
   ++line_number_;

@@ -25,11 +25,15 @@ class LineReader {
   /// True when the file ended without a newline after its last line (a truncated log).
   bool lastLineUnterminated() const { return unterminated_; }
   std::size_t lineNumber() const { return line_number_; }
+  /// Why zlib stopped before the end of the file (a gzip file cut short or corrupt); empty
+  /// when it read to the end.
+  const std::string &error() const { return error_; }
 
  private:
   gzFile file_ = nullptr;
   std::size_t line_number_ = 0;
   bool unterminated_ = false;
+  std::string error_;
 };
 
 /// Splits on blanks and tabs.

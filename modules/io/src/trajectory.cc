@@ -28,6 +28,9 @@ std::vector<std::vector<double>> readTable(const std::string &path, std::size_t 
                       " numbers");
     rows.push_back(std::move(row));
   }
+  if (!reader.error().empty())
+    throw ReadError(path + ":" + std::to_string(reader.lineNumber() + 1) +
+                    ": the compressed file is cut short or corrupt (" + reader.error() + ")");
   return rows;
 }
 
