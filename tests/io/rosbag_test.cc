@@ -71,14 +71,22 @@ TEST(Rosbag, AWrittenBagReadsBackWithBeamTimingAndOdometry) {
   EXPECT_NEAR(with_period.entries[1].scan.time_increment, 0.1 * 0.5 / (2 * M_PI), 1e-9);
 }
 
-// The bytes of the file at `path`, and the file written back from them.
-std::string bytesOf(const std::string &path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const std::string &path, const std::string &bytes) {
+// timedLog() written as a bag at `path`, then `replacement` written over its bytes `offset`
+// past the first (or, with `last`, the last) place where `pattern` occurs. False when the
+// pattern does not occur.
+bool writeCorruptBag(const std::string &path, const std::string &pattern, std::size_t offset,
+                     const std::string &replacement, bool last = false) {
+  writeRosbag(path, timedLog());
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::size_t at = last ? bytes.rfind(pattern) : bytes.find(pattern);
+  if (at == std::string::npos) return false;
+  bytes.replace(at + offset, replacement.size(), replacement);
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  return true;
 }
 
 // rosbag_storage trusts the lengths in a bag's records: a message record whose header field
@@ -91,12 +99,7 @@ TEST(Rosbag, AMessageWhoseRecordIsCorruptIsSkippedAndNamed) {
   writeRosbag(path, timedLog());
   const ScanLog intact = readLog(path);
   // Each message record's header has the field "op" of the message kind, 4 bytes long.
-  std::string bytes = bytesOf(path);
-  const std::string op_field("\x04\0\0\0op=\x02", 8);
-  const std::size_t last = bytes.rfind(op_field);
-  ASSERT_NE(last, std::string::npos);
-  bytes.replace(last, 4, "\xff\xff\xff\x7f");
-  writeBytes(path, bytes);
+  ASSERT_TRUE(writeCorruptBag(path, std::string("\x04\0\0\0op=\x02", 8), 0, "\xff\xff\xff\x7f", true));
   const ScanLog read = readLog(path);
   EXPECT_EQ(read.entries.size() + read.wheel_odometry.size() + 1, intact.entries.size() + intact.wheel_odometry.size());
   ASSERT_EQ(read.report.problems.size(), 1u);
@@ -111,14 +114,9 @@ TEST(Rosbag, AChunkThatDoesNotDecompressIsNamed) {
   if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
   test::TempDir dir;
   const std::string path = (dir.path() / "corrupt.bag").string();
-  writeRosbag(path, timedLog());
-  std::string bytes = bytesOf(path);
   // The chunk record's header has the field "size", the chunk's bytes decompressed.
   const std::string size_field("\x09\0\0\0size=", 9);
-  const std::size_t at = bytes.find(size_field);
-  ASSERT_NE(at, std::string::npos);
-  bytes.replace(at + size_field.size(), 4, std::string("\x10\0\0\0", 4));
-  writeBytes(path, bytes);
+  ASSERT_TRUE(writeCorruptBag(path, size_field, size_field.size(), std::string("\x10\0\0\0", 4)));
   try {
     readLog(path);
     FAIL() << "no scan can be read";
@@ -134,14 +132,9 @@ TEST(Rosbag, AScanThatDeclaresMoreRangesThanItHoldsIsSkippedAndNamed) {
   if (!rosbagSupported()) GTEST_SKIP() << "built without ROS bag support";
   test::TempDir dir;
   const std::string path = (dir.path() / "corrupt.bag").string();
-  writeRosbag(path, timedLog());
-  std::string bytes = bytesOf(path);
-  // The first scan's ranges: their count, 4, then 1 and 2 as float32.
-  const std::string ranges("\x04\0\0\0\0\0\x80\x3f\0\0\0\x40", 12);
-  const std::size_t at = bytes.find(ranges);
-  ASSERT_NE(at, std::string::npos);
-  bytes.replace(at, 4, std::string("\0\0\0\x04", 4));  // 64 M ranges: 256 MB
-  writeBytes(path, bytes);
+  // The first scan's ranges: their count, 4, then 1 and 2 as float32; 64 M ranges are 256 MB.
+  ASSERT_TRUE(
+      writeCorruptBag(path, std::string("\x04\0\0\0\0\0\x80\x3f\0\0\0\x40", 12), 0, std::string("\0\0\0\x04", 4)));
   const ScanLog read = readLog(path);
   EXPECT_EQ(read.entries.size(), timedLog().entries.size() - 1);
   ASSERT_EQ(read.report.problems.size(), 1u);

@@ -119,9 +119,10 @@ std::string parseLine(const Fields &f, const CarmenOptions &options, LogEntry &e
 
 }  // namespace
 
-void ReadReport::add(const std::string &where, std::size_t line, const std::string &what) {
+void ReadReport::add(const std::string &where, std::size_t line, const std::string &what, Shown shown) {
   ++skipped;
-  if (problems.size() < 20) problems.push_back(where + ":" + std::to_string(line) + ": " + what);
+  if (problems.size() < kFirstProblems || shown == kAlwaysShown)
+    problems.push_back(where + ":" + std::to_string(line) + ": " + what);
 }
 
 ScanLog readCarmen(const std::string &path, const CarmenOptions &options) {
@@ -149,13 +150,9 @@ ScanLog readCarmen(const std::string &path, const CarmenOptions &options) {
     if (is_odometry) odometry.push_back(odom);
     if (laser_pose && !log.laser_pose) log.laser_pose = laser_pose;
   }
-  if (!reader.error().empty()) {
-    // Named past the first problems too: all that follows is lost.
-    ++log.report.skipped;
-    log.report.problems.push_back(path + ":" + std::to_string(reader.lineNumber() + 1) +
-                                  ": the compressed file is cut short or corrupt (" + reader.error() +
-                                  "): the rest is not read");
-  }
+  // Named past the first problems too: all that follows is lost.
+  if (!reader.error().empty())
+    log.report.add(path, reader.lineNumber() + 1, reader.error() + ": the rest is not read", ReadReport::kAlwaysShown);
   if (log.entries.empty())
     throw ReadError(path + ": no usable scan in " + std::to_string(log.report.lines) + " lines" +
                     (log.report.problems.empty() ? "" : " (first problem: " + log.report.problems.front() + ")"));

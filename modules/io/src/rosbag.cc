@@ -200,15 +200,17 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
       ++index;
       ++log.report.lines;
       const std::string where = path + " (" + message.getTopic() + ")";
-      const ros::Time stamp = message.getTime();
-      const std::uint64_t key = detail::stampKey(stamp.sec, stamp.nsec);
-      const auto unsafe = std::find_if(connections[message.getTopic()].begin(), connections[message.getTopic()].end(),
-                                       [&](std::uint32_t id) {
-                                         return check.unsafe.count({id, key}) > 0;
-                                       });
-      if (unsafe != connections[message.getTopic()].end()) {
-        log.report.add(where, index, "not read: " + check.unsafe.at({*unsafe, key}));
-        continue;
+      if (!check.unsafe.empty()) {
+        const ros::Time stamp = message.getTime();
+        const std::uint64_t key = detail::stampKey(stamp.sec, stamp.nsec);
+        const std::vector<std::uint32_t> &ids = connections[message.getTopic()];
+        const auto unsafe = std::find_if(ids.begin(), ids.end(), [&](std::uint32_t id) {
+          return check.unsafe.count({id, key}) > 0;
+        });
+        if (unsafe != ids.end()) {
+          log.report.add(where, index, "not read: " + check.unsafe.at({*unsafe, key}));
+          continue;
+        }
       }
       try {
         if (message.getTopic() == scan_topic) {

@@ -219,7 +219,6 @@ BagCheck checkBagStructure(const std::string &path) {
   std::string chunk_problem;
   std::int64_t chunk_position = -1;
   std::uint64_t index_position = 0;
-  std::map<std::pair<std::uint64_t, std::uint64_t>, std::string> unsafe;  // by connection and stamp
   std::vector<std::uint8_t> scratch, data;
   Record record;
   for (std::uint64_t at = first; at < size; at = record.end) {
@@ -281,14 +280,6 @@ BagCheck checkBagStructure(const std::string &path) {
   }
   return check;
 }
-
-}  // namespace contour_reg::io::detail
-
-#else
-
-namespace contour_reg::io::detail {
-
-BagCheck checkBagStructure(const std::string &) { return {}; }
 
 }  // namespace contour_reg::io::detail
 

@@ -3,12 +3,13 @@
 // trusts the lengths its records give and reads out of bounds on corrupt ones, and it
 // decompresses a chunk that does not decompress once more for every message in it.
 //
-// The check reads the version line as rosbag_storage does, then walks the file record by record: every record (a header
-// of "name=value" fields, each with its length, then the data with its length) must fit where it lies, the bag header's
-// index position and each chunk info's chunk position must point at a record, and each index
-// entry at a record of the chunk before it. A chunk must decompress to records that fit it
-// exactly: a message whose index entry points into a chunk that does not decompress, or at or
-// past a record that does not fit, is unsafe to read; the others of that chunk are not.
+// The check reads the version line as rosbag_storage does, then walks the file record by
+// record: every record (a header of "name=value" fields, each with its length, then the data
+// with its length) must fit where it lies, the bag header's index position and each chunk
+// info's chunk position must point at a record, and each index entry at a record of the chunk
+// before it. A chunk must decompress to records that fit it exactly: a message whose index
+// entry points into a chunk that does not decompress, or at or past a record that does not
+// fit, is unsafe to read; the others of that chunk are not. Built with rosbag_storage only.
 
 #include <cstdint>
 #include <map>

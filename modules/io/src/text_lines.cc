@@ -30,7 +30,9 @@ bool LineReader::next(std::string &line) {
   if (ended && error_.empty()) {
     int code = Z_OK;
     const char *message = gzerror(file_, &code);
-    if (code != Z_OK && code != Z_STREAM_END) error_ = message ? message : "zlib error " + std::to_string(code);
+    if (code != Z_OK && code != Z_STREAM_END)
+      error_ = "the compressed file is cut short or corrupt (" +
+               (message ? std::string(message) : "zlib error " + std::to_string(code)) + ")";
   }
   if (!got_any) return false;
   ++line_number_;

@@ -25,8 +25,8 @@ class LineReader {
   /// True when the file ended without a newline after its last line (a truncated log).
   bool lastLineUnterminated() const { return unterminated_; }
   std::size_t lineNumber() const { return line_number_; }
-  /// Why zlib stopped before the end of the file (a gzip file cut short or corrupt); empty
-  /// when it read to the end.
+  /// Why the lines stopped before the end of the file ("the compressed file is cut short or
+  /// corrupt (zlib's reason)"); empty when they reached it.
   const std::string &error() const { return error_; }
 
  private:

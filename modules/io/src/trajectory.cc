@@ -29,8 +29,7 @@ std::vector<std::vector<double>> readTable(const std::string &path, std::size_t 
     rows.push_back(std::move(row));
   }
   if (!reader.error().empty())
-    throw ReadError(path + ":" + std::to_string(reader.lineNumber() + 1) +
-                    ": the compressed file is cut short or corrupt (" + reader.error() + ")");
+    throw ReadError(path + ":" + std::to_string(reader.lineNumber() + 1) + ": " + reader.error());
   return rows;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "contour_reg/core/transform_estimation.h"
 #include "generate.h"
@@ -33,6 +34,12 @@ bool onlyAlongWeakestDirection(const RefinementResult &best, const Eigen::Matrix
   const Eigen::Vector3d offset = offsetFrom(best, motion);
   const Eigen::Vector3d unit = along.normalized();
   return (offset - offset.dot(unit) * unit).norm() <= kDistinctMotions / 4;
+}
+
+// Whether a refinement has come within a quarter of the distinct-motion distance of `best`:
+// it leads back to `best`, and can stop there (the `arrived` of ContourRefiner::refine).
+std::function<bool(const Eigen::Matrix3d &)> backTo(const Eigen::Matrix3d &best) {
+  return [&best](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; };
 }
 
 // A corner motion that puts less than this share of the source contour on the target must
@@ -114,9 +121,7 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
   screening.max_iterations = kScreeningIterations;
   const std::vector<Eigen::Vector2d> &sparse = screeningSamplesOf(scorer.source(), buffers);
   // A start that has come back near the best leads to the best: stop there.
-  const auto near_best = [&](const Eigen::Matrix3d &m) {
-    return motionDistance(best.transform, m) <= kDistinctMotions / 4;
-  };
+  const auto near_best = backTo(best.transform);
   const double x = best.transform(0, 2), y = best.transform(1, 2), yaw = yawOf(best.transform);
   for (double along = 2.0 * kSweepStep; along <= best.rms_range; along += kSweepStep)
     for (const double sign : {1.0, -1.0}) {
@@ -165,7 +170,7 @@ bool standsAgainstGuess(Judged &found, const RegistrationParams &params, const C
   // the screening of hypotheses; one that leads elsewhere goes on from there on all samples, so
   // that the motion it scores is refined as fully as the best.
   const Eigen::Matrix3d &best = found.best.refined.transform;
-  const auto near_best = [&](const Eigen::Matrix3d &m) { return motionDistance(best, m) <= kDistinctMotions / 4; };
+  const auto near_best = backTo(best);
   const RefinementResult quick = buffers.refiner.refine(screeningSamplesOf(scorer.source(), buffers),
                                                         guess ? rigidPart(*guess) : Eigen::Matrix3d::Identity(),
                                                         widened(params, checks), near_best);
@@ -239,11 +244,7 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
   if (buffers.repetition.shifted.empty()) return true;
   const double best_score = scorer.score(found.best);
   const double against_best = best.overlap - best_score;
-  // A refinement that has come a quarter of the distinct-motion distance near the best leads
-  // back to it: stop there.
-  const auto near_best = [&](const Eigen::Matrix3d &m) {
-    return motionDistance(best.transform, m) <= kDistinctMotions / 4;
-  };
+  const auto near_best = backTo(best.transform);  // a start that leads back to the best stops there
   for (const Eigen::Matrix3d &start : buffers.repetition.shifted) {
     const RefinementResult rival = buffers.refiner.refine(buffers.samples, start, params.refinement, near_best);
     if (motionDistance(rival.transform, best.transform) <= kDistinctMotions) continue;

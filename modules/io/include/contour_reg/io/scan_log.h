@@ -35,9 +35,13 @@ struct ReadReport {
   std::size_t lines = 0;              ///< lines read
   std::size_t skipped = 0;            ///< bad or truncated lines skipped
   std::size_t reordered = 0;          ///< scans whose stamp went backwards in file order
-  std::vector<std::string> problems;  ///< "file:line: what", the first ones
+  std::vector<std::string> problems;  ///< "file:line: what", the first kFirstProblems and those always shown
 
-  void add(const std::string &where, std::size_t line, const std::string &what);
+  static constexpr std::size_t kFirstProblems = 20;
+  enum Shown { kIfAmongTheFirst, kAlwaysShown };
+  /// Counts a skipped line and keeps "where:line: what" among the problems, if among the first
+  /// kFirstProblems or `shown` is kAlwaysShown (what loses the rest of a file).
+  void add(const std::string &where, std::size_t line, const std::string &what, Shown shown = kIfAmongTheFirst);
 };
 
 struct ScanLog {
