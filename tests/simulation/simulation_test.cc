@@ -98,6 +98,38 @@ TEST(OccupancyGrid, MapServerYamlAndPgmAreRead) {
   EXPECT_THROW(readOccupancyGrid(dir.file("missing.pgm")), io::ReadError);
 }
 
+// Refused with the file (and line) named, none thrown past the reader or run for ever.
+void expectRefused(const std::string &path, const std::string &named) {
+  try {
+    readOccupancyGrid(path);
+    FAIL() << path << " must be refused";
+  } catch (const io::ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find(named), std::string::npos) << error.what();
+  }
+}
+
+TEST(OccupancyGrid, MapsNoGridCanHoldAreRefused) {
+  test::TempDir dir;
+  {
+    std::ofstream pgm(dir.file("map.pgm"), std::ios::binary);
+    pgm << "P5\n2 2\n255\n";
+    pgm.write("\xff\xff\xff\x00", 4);
+  }
+  const std::string map = "image: map.pgm\nresolution: 0.05\n";
+  dir.write("nan.yaml", map + "origin: [.nan, 0, 0]\n");
+  expectRefused(dir.file("nan.yaml"), "nan.yaml:3");
+  // Cells 5 cm wide 1e300 m from zero: doubles there are 1e284 m apart.
+  dir.write("far.yaml", map + "origin: [1e300, 0, 0]\n");
+  expectRefused(dir.file("far.yaml"), "far.yaml:3");
+  dir.write("inf.yaml", "image: map.pgm\nresolution: 1e308\norigin: [0, 0, 0]\n");
+  expectRefused(dir.file("inf.yaml"), "inf.yaml:2");
+  {  // a header of 10^10 pixels: more than OpenCV reads
+    std::ofstream pgm(dir.file("huge.pgm"), std::ios::binary);
+    pgm << "P5\n100000 100000\n255\n";
+  }
+  expectRefused(dir.file("huge.pgm"), "huge.pgm");
+}
+
 TEST(Lidar, NoiseAndDropoutFollowTheModel) {
   World wall;
   wall.addSegment({5.0, -100.0}, {5.0, 100.0});
@@ -225,6 +257,25 @@ TEST(Paths, PlacementFindsRoomInAMapAndKeepsClearance) {
   World closet;
   closet.addBox({0, 0}, {2, 2});
   EXPECT_TRUE(placePath(closet, pathShape("L")).empty());
+}
+
+TEST(Paths, PlacementInAVastMapTriesABoundedNumberOfPlaces) {
+  // 40 x 40 cells of 1 km inside a ring of walls: the search does not try every half metre of
+  // 40 km by 40 km, and the shape fits in the free cells.
+  const int size = 40;
+  std::vector<OccupancyGrid::Cell> cells(static_cast<std::size_t>(size * size), OccupancyGrid::Cell::kFree);
+  for (int k = 0; k < size; ++k)
+    for (int edge : {0, size - 1}) {
+      cells[static_cast<std::size_t>(edge * size + k)] = OccupancyGrid::Cell::kOccupied;
+      cells[static_cast<std::size_t>(k * size + edge)] = OccupancyGrid::Cell::kOccupied;
+    }
+  World vast;
+  vast.setGrid(std::make_shared<OccupancyGrid>(size, size, 1000.0, V(0, 0), cells));
+  PlacementOptions options;
+  options.sight_range = 1e6;  // its walls are tens of kilometres away
+  const auto placed = placePath(vast, pathShape("L"), options);
+  ASSERT_FALSE(placed.empty());
+  for (const auto &pose : samplePath(placed, 1.0)) EXPECT_GE(vast.clearance(pose.translation()), options.clearance);
 }
 
 TEST(SimulatedRun, ASeedFixesTheRunAndItRoundTripsThroughCarmen) {

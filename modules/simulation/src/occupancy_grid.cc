@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <yaml-cpp/yaml.h>
 #include <opencv2/imgcodecs.hpp>
@@ -116,12 +118,46 @@ double OccupancyGrid::castRay(const Eigen::Vector2d &origin, const Eigen::Vector
 
 namespace {
 
-OccupancyGrid gridFromImage(const std::string &path, const MapReadOptions &options) {
+// Where a map's resolution and origin were given, for its messages: "file:line: " in a YAML
+// file, "file: " for an image read with options.
+struct MapSettingsAt {
+  std::string resolution, origin;
+};
+
+// Doubles resolve a coordinate x to about 2e-16 |x|. Cells narrower than this share of the
+// map's largest coordinate are nearer to that limit than a grid can work with: where a point
+// falls, a step along a path or a ray would round away.
+constexpr double kLeastCellPerCoordinate = 1e-9;
+
+// Refuses a grid of `size` cells of `resolution` m from `origin` that doubles cannot hold:
+// a coordinate not finite, or cells too narrow for the map's coordinates.
+void checkGeometry(const cv::Size &size, double resolution, const Eigen::Vector2d &origin, const MapSettingsAt &at) {
+  if (!(resolution > 0.0) || !std::isfinite(resolution))
+    throw io::ReadError(at.resolution + "the map resolution must be a positive number of metres per pixel");
+  if (!origin.allFinite()) throw io::ReadError(at.origin + "the map origin must be finite");
+  const Eigen::Vector2d far_corner = origin + resolution * Eigen::Vector2d(size.width, size.height);
+  if (!far_corner.allFinite())
+    throw io::ReadError(at.resolution + "the map, " + std::to_string(size.width) + " x " + std::to_string(size.height) +
+                        " pixels of " + std::to_string(resolution) + " m, reaches beyond any finite coordinate");
+  const double largest = std::max(origin.cwiseAbs().maxCoeff(), far_corner.cwiseAbs().maxCoeff());
+  if (resolution < kLeastCellPerCoordinate * largest) {
+    char message[160];
+    std::snprintf(message, sizeof message, "cells of %g m cannot be told apart %g m from the origin of coordinates",
+                  resolution, largest);
+    throw io::ReadError(at.origin + message);
+  }
+}
+
+OccupancyGrid gridFromImage(const std::string &path, const MapReadOptions &options, const MapSettingsAt &at) {
   if (!std::filesystem::is_regular_file(path)) throw io::ReadError(path + ": no such map image");
-  const cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  } catch (const cv::Exception &error) {  // e.g. more pixels than OpenCV reads
+    throw io::ReadError(path + ": OpenCV cannot read the image: " + error.err);
+  }
   if (image.empty()) throw io::ReadError(path + ": not an image OpenCV can read (PGM, PNG, ...)");
-  if (!(options.resolution > 0.0) || !std::isfinite(options.resolution))
-    throw io::ReadError(path + ": the map resolution must be a positive number of metres per pixel");
+  checkGeometry(image.size(), options.resolution, options.origin, at);
   std::vector<OccupancyGrid::Cell> cells(static_cast<std::size_t>(image.cols) * static_cast<std::size_t>(image.rows));
   for (int row = 0; row < image.rows; ++row) {
     const int grid_row = image.rows - 1 - row;  // the image's top row is the grid's last
@@ -151,23 +187,31 @@ OccupancyGrid gridFromYaml(const std::string &path, MapReadOptions options) {
     if (!node.IsMap() || !node[key]) throw io::ReadError(path + ": the map file has no '" + key + "'");
     return node[key];
   };
+  const auto lineOf = [&](const YAML::Node &value) {
+    return path + ":" + std::to_string(value.Mark().line + 1) + ": ";
+  };
   std::string image;
+  MapSettingsAt at;
   try {
     image = field("image").as<std::string>();
     options.resolution = field("resolution").as<double>();
+    at.resolution = lineOf(field("resolution"));
     const YAML::Node origin = field("origin");
-    if (!origin.IsSequence() || origin.size() < 2)
-      throw io::ReadError(path + ":" + std::to_string(origin.Mark().line + 1) + ": origin must be [x, y, yaw]");
+    if (!origin.IsSequence() || origin.size() < 2) throw io::ReadError(lineOf(origin) + "origin must be [x, y, yaw]");
     options.origin = {origin[0].as<double>(), origin[1].as<double>()};
+    at.origin = lineOf(origin);
     if (node["negate"]) options.negate = node["negate"].as<int>() != 0;
     if (node["occupied_thresh"]) options.occupied_threshold = node["occupied_thresh"].as<double>();
     if (node["free_thresh"]) options.free_threshold = node["free_thresh"].as<double>();
+    for (const char *key : {"occupied_thresh", "free_thresh"})
+      if (node[key] && !(node[key].as<double>() >= 0.0 && node[key].as<double>() <= 1.0))
+        throw io::ReadError(lineOf(node[key]) + key + " must be an occupancy within 0-1");
   } catch (const YAML::Exception &error) {
     throw io::ReadError(path + ":" + std::to_string(error.mark.line + 1) + ": " + error.msg);
   }
   std::filesystem::path image_path(image);
   if (image_path.is_relative()) image_path = std::filesystem::path(path).parent_path() / image_path;
-  return gridFromImage(image_path.string(), options);
+  return gridFromImage(image_path.string(), options, at);
 }
 
 }  // namespace
@@ -175,7 +219,7 @@ OccupancyGrid gridFromYaml(const std::string &path, MapReadOptions options) {
 OccupancyGrid readOccupancyGrid(const std::string &path, const MapReadOptions &options) {
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension == ".yaml" || extension == ".yml") return gridFromYaml(path, options);
-  return gridFromImage(path, options);
+  return gridFromImage(path, options, {path + ": ", path + ": "});
 }
 
 }  // namespace contour_reg::simulation

@@ -10,6 +10,10 @@ namespace {
 
 using V = Eigen::Vector2d;
 
+// placePath tries start positions search_step apart, but no more than this many along each
+// axis of the map: a map of hundreds of metres is searched more coarsely, not for hours.
+constexpr double kMostPositions = 200.0;
+
 V pointAt(const std::vector<V> &waypoints, double s) {
   for (std::size_t k = 0; k + 1 < waypoints.size(); ++k) {
     const double length = (waypoints[k + 1] - waypoints[k]).norm();
@@ -111,6 +115,10 @@ std::vector<V> placePath(const World &world, const std::vector<V> &shape, const 
   const Eigen::AlignedBox2d bounds = mapBounds(world);
   if (bounds.isEmpty()) return {};
   const V middle = bounds.center();
+  // Every search_step across the map, but at most kMostPositions along each axis.
+  const double step = std::max(options.search_step, bounds.sizes().maxCoeff() / kMostPositions);
+  if (!(step > 0.0) || !std::isfinite(step)) return {};
+  const Eigen::Matrix<long, 2, 1> positions = (bounds.sizes() / step).array().floor().cast<long>() + 1;
   for (double scale : options.scales) {
     struct Candidate {
       std::vector<V> waypoints;
@@ -124,9 +132,9 @@ std::vector<V> placePath(const World &world, const std::vector<V> &shape, const 
         std::vector<V> local;
         for (const V &w : shape) local.push_back(linear * w);
         const std::vector<V> checks = pointsAlong(local, options.sample_step);
-        for (double x = bounds.min().x(); x <= bounds.max().x(); x += options.search_step) {
-          for (double y = bounds.min().y(); y <= bounds.max().y(); y += options.search_step) {
-            const V offset(x, y);
+        for (long i = 0; i < positions.x(); ++i) {
+          for (long j = 0; j < positions.y(); ++j) {
+            const V offset = bounds.min() + step * V(static_cast<double>(i), static_cast<double>(j));
             double least = std::numeric_limits<double>::infinity();
             for (const V &c : checks) {
               const V p = c + offset;

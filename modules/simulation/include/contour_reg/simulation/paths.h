@@ -36,7 +36,9 @@ std::vector<Eigen::Isometry2d> samplePath(const std::vector<Eigen::Vector2d> &wa
 struct PlacementOptions {
   double clearance = 0.6;    ///< m, least distance from every point of the path to an obstacle
   double sample_step = 0.2;  ///< m, spacing of the checked points along the path
-  double search_step = 0.5;  ///< m, spacing of the tried start positions
+  /// m, spacing of the tried start positions; wider in maps over 100 m across, which are tried
+  /// at 200 positions along each axis
+  double search_step = 0.5;
   std::vector<double> scales = {1.0, 0.8, 0.6, 0.45};  ///< shape sizes tried, largest first
   double sight_range = 30.0;                           ///< m: from every waypoint, walls must be seen within it ...
   double enclosed_fraction = 0.9;                      ///< ... in at least this fraction of directions
