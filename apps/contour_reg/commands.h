@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <new>
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
@@ -14,8 +15,8 @@
 namespace contour_reg::cli {
 
 /// Runs a subcommand body: a non-zero exit code ends the program with that code; an
-/// unreadable file, a filesystem error (it names the path) or exhausted memory with 2, the
-/// error printed once.
+/// unreadable file, a filesystem error (it names the path), settings a library call refuses
+/// (std::invalid_argument) or exhausted memory with 2, the error printed once.
 inline void runCommand(const std::function<int()> &body) {
   int code = 0;
   try {
@@ -24,6 +25,9 @@ inline void runCommand(const std::function<int()> &body) {
     std::fprintf(stderr, "error: %s\n", error.what());
     code = 2;
   } catch (const std::filesystem::filesystem_error &error) {
+    std::fprintf(stderr, "error: %s\n", error.what());
+    code = 2;
+  } catch (const std::invalid_argument &error) {  // settings a library call refuses, e.g. a run too long to simulate
     std::fprintf(stderr, "error: %s\n", error.what());
     code = 2;
   } catch (const std::bad_alloc &) {

@@ -15,6 +15,7 @@
 #include "contour_reg/experiment/paper_experiment.h"
 #include "contour_reg/io/trajectory.h"
 #include "contour_reg/simulation/paths.h"
+#include "contour_reg/simulation/simulated_run.h"
 #include "fan_out.h"
 #include "scenario.h"
 
@@ -207,10 +208,13 @@ std::vector<experiment::ArrivalResult> readArrival(const ExperimentOptions &opti
 
 int runExperiment(const ExperimentOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const Scenario scenario = loadScenario(options.scenario, options.paths);
+  for (const auto &[name, waypoints] : scenario.paths)
+    for (double rate : options.rates)
+      simulation::checkRunSize(simulation::pathLength(waypoints), runSettings(options.scenario, rate, options.seed));
   std::error_code error;
   fs::create_directories(fs::path(options.out) / "trajectories", error);
   if (!fs::is_directory(options.out)) throw io::ReadError(options.out + ": cannot create the output folder");
-  const Scenario scenario = loadScenario(options.scenario, options.paths);
 
   experiment::ExperimentSettings settings;
   settings.methods = options.methods;

@@ -51,6 +51,9 @@ expect_run(2 experiment --odometry-noise -1 --out ${OUT}/experiment)
 expect_match("${LAST_ERR}" "--odometry-noise")
 expect_run(2 simulate --odometry-rate -5 -o ${OUT}/run.clf)
 expect_match("${LAST_ERR}" "--odometry-rate")
+# A run longer than any simulation: refused with its size, nothing written.
+expect_run(2 simulate --speed 1e-300 -o ${OUT}/run.clf)
+expect_match("${LAST_ERR}" "error: a run of .* scans \\(a path of .* m at 1e-300 m/s")
 expect_run(2 experiment --guess odom --wheel-noise 0.1 -1 0.1 0.1 --out ${OUT}/experiment)
 expect_match("${LAST_ERR}" "--wheel-noise")
 expect_run(2 compare ${LOG} --guess odom --wheel-noise 0.1 0.1 --out ${OUT}/compare)
@@ -58,6 +61,13 @@ expect_match("${LAST_ERR}" "--wheel-noise")
 expect_run(2 experiment --rates 0 --out ${OUT}/experiment)
 expect_match("${LAST_ERR}" "--rates: 0 is out of range: must be > 0")
 expect_nothing_written()
+# The experiment checks the size of each run before it simulates one: its folder stays empty.
+expect_run(2 experiment --odometry-rate 1e12 --out ${WORK_DIR}/long-experiment)
+expect_match("${LAST_ERR}" "error: a run of .* wheel odometry samples")
+file(GLOB written ${WORK_DIR}/long-experiment/*)
+if(written)
+  message(FATAL_ERROR "a refused experiment wrote ${written}")
+endif()
 
 # Outputs are checked before any work: a file where a folder goes, a folder that does not exist.
 file(WRITE ${WORK_DIR}/a_file "")

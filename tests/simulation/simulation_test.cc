@@ -5,6 +5,8 @@
 #include <fstream>
 #include <numeric>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -343,6 +345,38 @@ TEST(SimulatedRun, LidarModelsAndMotionsAreKnownByName) {
   EXPECT_FALSE(motionNamed("moving").has_value());
   EXPECT_EQ(lidarModelNames().size(), 3u);
   EXPECT_EQ(motionNames().size(), 2u);
+}
+
+// A run longer than any simulation is refused before it starts, not cut short or left to run
+// out of memory; its size is in the message.
+TEST(SimulatedRun, ARunOfMoreThanAMillionScansIsRefused) {
+  World box;
+  box.addBox({-10.0, -10.0}, {10.0, 10.0});
+  const std::vector<V> path = {V(-5, 0), V(5, 0)};
+  const auto expectRefused = [&](const std::vector<V> &waypoints, const RunSettings &settings, const char *named) {
+    try {
+      simulateRun(box, waypoints, settings);
+      FAIL() << "refused: " << named;
+    } catch (const std::invalid_argument &error) {
+      EXPECT_NE(std::string(error.what()).find(named), std::string::npos) << error.what();
+    }
+  };
+  RunSettings crawl;
+  crawl.speed = 1e-300;  // 10 m in 1e301 s
+  expectRefused(path, crawl, "scans");
+  RunSettings slow;
+  slow.speed = 1e-5;  // 2 million scans
+  expectRefused(path, slow, "scans");
+  expectRefused({V(0, 0), V(1e300, 0)}, RunSettings(), "scans");
+  expectRefused({V(0, 0), V(1e200, 1e200), V(-1e200, -1e200), V(1e300, 0)}, RunSettings(), "scans");
+  RunSettings chatty;
+  chatty.odometry_rate = 1e12;  // 10^12 odometry samples a second over 20 s
+  expectRefused(path, chatty, "odometry samples");
+  RunSettings ok;
+  ok.speed = 1e-4;  // 200 001 scans: a long run, but one
+  ok.lidar.beams = 2;
+  ok.odometry_rate = 0.0;
+  EXPECT_EQ(simulateRun(box, path, ok).log.entries.size(), 200001u);
 }
 
 // The wheel odometry is logged as a robot's /odom is, between the scans as well as at them:

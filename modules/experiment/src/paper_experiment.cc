@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <random>
 #include <thread>
 
@@ -92,9 +94,18 @@ std::vector<ArrivalResult> runExperiment(const simulation::World &world,
   const std::vector<Arrival> arrivals = planArrivals(paths, settings);
   std::vector<std::vector<ArrivalResult>> by_arrival(arrivals.size());
   std::atomic<std::size_t> next{0}, done{0};
+  std::exception_ptr failure;  // the first arrival's exception: the others stop, and it is thrown here
+  std::mutex failure_mutex;
   auto worker = [&]() {
     for (std::size_t j = next++; j < arrivals.size(); j = next++) {
-      by_arrival[j] = runArrival(world, paths, settings, arrivals[j]);
+      try {
+        by_arrival[j] = runArrival(world, paths, settings, arrivals[j]);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = arrivals.size();
+        return;
+      }
       const std::size_t finished = ++done;
       if (settings.progress) settings.progress(finished, arrivals.size());
     }
@@ -105,6 +116,7 @@ std::vector<ArrivalResult> runExperiment(const simulation::World &world,
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread &t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
   std::vector<ArrivalResult> results;
   for (auto &arrival : by_arrival)
     for (auto &result : arrival) results.push_back(std::move(result));

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
+#include <stdexcept>
 
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/simulation/paths.h"
@@ -14,7 +16,31 @@ namespace {
 
 io::Pose2D toPose(const Eigen::Isometry2d &pose) { return io::toPose(pose.matrix()); }
 
+// The most scans and wheel odometry samples a run holds: a million scans are days of a LIDAR
+// at 2 Hz and gigabytes of log. A longer run is an error in its settings.
+constexpr double kMostScans = 1e6;
+constexpr double kMostOdometrySamples = 1e7;
+
 }  // namespace
+
+void checkRunSize(double length, const RunSettings &settings) {
+  const double duration = length / settings.speed;
+  const double scans = std::ceil(duration * settings.rate) + 1.0;
+  const double samples = duration * settings.odometry_rate;
+  char message[200];
+  if (!(scans <= kMostScans)) {
+    std::snprintf(message, sizeof message,
+                  "a run of %.3g scans (a path of %.3g m at %.3g m/s, %.3g scans a second): more than %.0f", scans,
+                  length, settings.speed, settings.rate, kMostScans);
+    throw std::invalid_argument(message);
+  }
+  if (!(samples <= kMostOdometrySamples)) {
+    std::snprintf(message, sizeof message,
+                  "a run of %.3g wheel odometry samples (%.3g s at %.3g a second): more than %.0f", samples, duration,
+                  settings.odometry_rate, kMostOdometrySamples);
+    throw std::invalid_argument(message);
+  }
+}
 
 const std::vector<std::string> &motionNames() {
   static const std::vector<std::string> names{"stop-and-go", "continuous"};
@@ -35,6 +61,7 @@ SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> 
   run.log.source = "simulation";
   run.log.laser_pose = settings.laser_pose;
   if (waypoints.size() < 2 || !(settings.rate > 0.0) || !(settings.speed > 0.0)) return run;
+  checkRunSize(run.path_length, settings);
   std::mt19937 rng(settings.seed);
   std::normal_distribution<double> unit(0.0, 1.0);
 

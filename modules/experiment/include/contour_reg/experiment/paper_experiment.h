@@ -79,7 +79,8 @@ std::vector<ArrivalResult> runArrival(const simulation::World &world,
                                       const ExperimentSettings &settings, const Arrival &arrival);
 
 /// Runs every arrival (planArrivals), settings.jobs at a time. Results come in (path, rate,
-/// arrival, method) order.
+/// arrival, method) order. An arrival that throws (simulateRun refuses a run too long to
+/// simulate) stops the others; its exception is thrown here.
 std::vector<ArrivalResult> runExperiment(const simulation::World &world,
                                          const std::map<std::string, std::vector<Eigen::Vector2d>> &paths,
                                          const ExperimentSettings &settings);

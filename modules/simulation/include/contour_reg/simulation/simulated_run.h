@@ -45,11 +45,17 @@ struct SimulatedRun {
   double path_length = 0.0;     ///< m
 };
 
+/// Throws std::invalid_argument, with the run's size, when driving a path of `length` m with
+/// `settings` would log more than a million scans or ten million wheel odometry samples.
+void checkRunSize(double length, const RunSettings &settings);
+
 /// Drives `waypoints` through `world`. Scan k is stamped k / rate; in continuous motion its
 /// beams fire over the revolution that starts then, so the later beams see the world from
 /// further along the path. The robot drives the path at constant speed between the scans'
 /// poses; its wheel odometry is logged at odometry_rate and at every scan stamp, each
 /// increment between scans carrying its noise in proportion to how far along it the robot is.
+/// Throws std::invalid_argument when the run is too long to log (checkRunSize): a path too
+/// long or not finite, a speed too low, a rate too high.
 SimulatedRun simulateRun(const World &world, const std::vector<Eigen::Vector2d> &waypoints,
                          const RunSettings &settings);
 
