@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "contour_reg/core/equalization.h"
 #include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/odometry/odometry.h"
@@ -37,6 +38,9 @@ inline std::string logStem(const std::string &path) {
   return p.filename().string();
 }
 
+/// m: no robot carries its LIDAR further from its base_link.
+inline constexpr double kFarthestMounting = 100.0;
+
 /// --laser-pose X Y YAW: the laser's pose on the robot (m, m, deg), `what` said of it in the help.
 inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &laser_pose, const std::string &what) {
   command
@@ -45,6 +49,9 @@ inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &las
           [&laser_pose](const std::vector<double> &v) {
             for (double value : v)
               if (!std::isfinite(value)) throw CLI::ValidationError("--laser-pose", "X Y YAW must be finite numbers");
+            if (std::abs(v[0]) > kFarthestMounting || std::abs(v[1]) > kFarthestMounting || std::abs(v[2]) > 360.0)
+              throw CLI::ValidationError("--laser-pose",
+                                         "X and Y must lie within 100 m of the robot, YAW within 360 deg");
             laser_pose = io::Pose2D{v[0], v[1], v[2] * M_PI / 180.0};
           },
           "The laser's pose on the robot, base_link -> laser (m, m, deg), " + what)
@@ -65,9 +72,9 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   command
       .add_option("--scan-period", options.scan_period,
                   "Scans without beam timing (CARMEN, PCD): s per turn of the LIDAR, beams taken in index order "
-                  "from the stamp (s, >= 0; 0: none)")
+                  "from the stamp (s, 0-10; 0: none)")
       ->capture_default_str()
-      ->check(nonNegative());
+      ->check(inRange(0.0, 10.0));
   command
       .add_option("--beam-step", options.beam_step,
                   "Keep every N-th beam from the first: the scans of a LIDAR with N times the angular step (>= 1)")
@@ -116,9 +123,9 @@ struct MethodOptions {
 
 inline void addMethodOptions(CLI::App &command, MethodOptions &options) {
   const CLI::Validator fraction = inRange(0.0, 1.0);
-  command.add_option("--contour-step", options.contour_step, "Contour: equalized element length (m, > 0)")
+  command.add_option("--contour-step", options.contour_step, "Contour: equalized element length (m, 0.001-10)")
       ->capture_default_str()
-      ->check(positive());
+      ->check(inRange(EqualizationParams::kLeastStep, EqualizationParams::kLongestStep));
   command.add_option("--threshold", options.threshold, "Contour: corner response threshold (0-1]")
       ->capture_default_str()
       ->check(inRange(0.0, 1.0, true));

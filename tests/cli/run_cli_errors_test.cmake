@@ -27,7 +27,8 @@ foreach(case "--arm;0" "--threshold;-1" "--contour-step;0" "--candidates;0" "--l
              "--icp-max-distance;-1" "--iterations;0" "--ndt-resolution;0" "--probe-distance;-1" "--threshold;abc"
              "--local-map;-1" "--frame;map" "--laser-pose;0.1;0" "--laser-pose;0;0;nan" "--laser-pose;a;b;c"
              "--wheel-noise;0.1;0.1;0.1" "--wheel-noise;0.1;0.1;-0.1;0.1" "--wheel-noise;0.1;inf;0.1;0.1"
-             "--beam-step;0" "--beam-step;1.5")
+             "--beam-step;0" "--beam-step;1.5" "--contour-step;0.000001" "--scan-period;100"
+             "--laser-pose;1000;0;0" "--laser-pose;0;0;1e300")
   list(GET case 0 option)
   expect_run(2 odometry ${LOG} -m ndt2d --output ${OUT}/t.tum ${case})
   expect_match("${LAST_ERR}" "${option}")

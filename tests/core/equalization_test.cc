@@ -1,6 +1,7 @@
 #include "contour_reg/core/equalization.h"
 
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -100,6 +101,25 @@ TEST(Equalization, SegmentsInFixedCountModeShareOneStep) {
   EXPECT_EQ(contours[1].elementCount(), 10u);
   EXPECT_NEAR(contours[0].step, 0.1, 1e-12);
   EXPECT_EQ(contours[1].segment, 1);
+}
+
+// Elements finer than a millimetre (below any LIDAR's range noise) or more than 100 000 over a
+// scan are settings errors: a micrometre step over a scan's 100 m of contour asks for 10^8
+// elements and gigabytes.
+TEST(Equalization, StepsFinerThanAMillimetreAreInvalid) {
+  EqualizationParams params;
+  std::string why;
+  params.step = 1e-6;
+  EXPECT_FALSE(params.validate(&why));
+  EXPECT_NE(why.find("equalization.step"), std::string::npos) << why;
+  params.step = 0.001;
+  EXPECT_TRUE(params.validate());
+  params.mode = EqualizationMode::kFixedCount;
+  params.count = 1000000;
+  EXPECT_FALSE(params.validate(&why));
+  EXPECT_NE(why.find("equalization.count"), std::string::npos) << why;
+  params.count = 100000;
+  EXPECT_TRUE(params.validate());
 }
 
 TEST(Equalization, DegenerateInputGivesNoElements) {

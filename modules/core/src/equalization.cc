@@ -44,8 +44,10 @@ std::size_t elementCountAtStep(double length, double step) {
 }  // namespace
 
 bool EqualizationParams::validate(std::string *why) const {
-  if (mode == EqualizationMode::kFixedStep && !(step > 0.0)) return invalid(why, "equalization.step must be > 0");
-  if (mode == EqualizationMode::kFixedCount && count < 1) return invalid(why, "equalization.count must be >= 1");
+  if (mode == EqualizationMode::kFixedStep && !(step >= kLeastStep && step <= kLongestStep))
+    return invalid(why, "equalization.step must be within 0.001-10 m");
+  if (mode == EqualizationMode::kFixedCount && !(count >= 1 && count <= kMostElements))
+    return invalid(why, "equalization.count must be within 1-100000");
   return true;
 }
 
