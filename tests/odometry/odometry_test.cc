@@ -351,6 +351,39 @@ TEST(Odometry, WheelOdometryBridgesFailuresWhenItIsTheGuess) {
   EXPECT_LT(std::hypot(error.x, error.y), 0.02);
 }
 
+// A wheel odometry sample corrupt in a log (1e300 m) gives two increments nothing can be
+// fused with: the scans' own motions stand, and no pose is NaN.
+TEST(Odometry, AnAbsurdWheelSampleIsNotFused) {
+  Sequence s = roomSequence(8, 0.0);
+  addWheels(s, 0.0);
+  s.log.entries[4].odometry->x = 1e300;
+  auto matcher = makeScanMatcher("contour");
+  OdometryOptions options;
+  options.guess = GuessSource::kOdometry;
+  const OdometryRun run = runOdometry(s.log, *matcher, options);
+  ASSERT_EQ(run.trajectory.size(), s.truth.size());
+  for (const io::StampedPose &p : run.trajectory)
+    ASSERT_TRUE(std::isfinite(p.pose.x) && std::isfinite(p.pose.y) && std::isfinite(p.pose.yaw)) << p.stamp;
+  const io::Pose2D error = io::between(io::between(s.truth[0].pose, s.truth.back().pose),
+                                       io::between(run.trajectory[0].pose, run.trajectory.back().pose));
+  EXPECT_LT(std::hypot(error.x, error.y), 0.05);
+}
+
+// The same sample where the scan is lost too: the interval is bridged by a motion the robot
+// could have made, not by the wheels' 1e300 m.
+TEST(Odometry, AnAbsurdWheelSampleDoesNotBridgeALostScan) {
+  Sequence s = roomSequence(10, 0.0);
+  addWheels(s, 0.0);
+  s.log.entries[6].odometry->x = 1e300;
+  for (float &r : s.log.entries[6].scan.ranges) r = std::nanf("");
+  auto matcher = makeScanMatcher("contour");
+  const OdometryRun run = runOdometry(s.log, *matcher);
+  EXPECT_EQ(run.stats.failures, 2u);  // 5 -> 6 and 6 -> 7
+  for (const io::StampedPose &p : run.trajectory)
+    ASSERT_TRUE(std::isfinite(p.pose.x) && std::isfinite(p.pose.y) && std::isfinite(p.pose.yaw)) << p.stamp;
+  EXPECT_LT(std::hypot(errorTo(s, run, 9).x, errorTo(s, run, 9).y), 0.1);
+}
+
 // The wheels measured the interval a failed registration leaves open; the previous motion only
 // extrapolates it. A scan lost just as the robot turns sharply, registered from a zero guess:
 // bridged by the wheels, it keeps the heading; by constant velocity, it would not turn at all.

@@ -90,5 +90,15 @@ TEST(Fusion, RefusesAWheelCovarianceThatIsNotPositive) {
   EXPECT_FALSE(fuse({}, Eigen::Matrix3d::Identity(), {}, Eigen::Matrix3d::Zero()));
 }
 
+// A wheel increment of 1e300 m (a corrupt sample) has a covariance beyond any double: nothing
+// to fuse, where its arithmetic would give NaN.
+TEST(Fusion, RefusesAWheelIncrementThatIsNotFinite) {
+  const Eigen::Matrix3d information = Eigen::Vector3d(1e4, 1e4, 1e5).asDiagonal();
+  const io::Pose2D absurd{1e300, 0.0, 0.1};
+  EXPECT_FALSE(fuse({0.1, 0.0, 0.1}, information, absurd, wheelCovariance(absurd, noise())));
+  const io::Pose2D unknown{std::nan(""), 0.0, 0.1};
+  EXPECT_FALSE(fuse({0.1, 0.0, 0.1}, information, unknown, Eigen::Matrix3d::Identity()));
+}
+
 }  // namespace
 }  // namespace contour_reg::odometry

@@ -21,14 +21,30 @@ using io::toPose;
 
 namespace {
 
-// The laser's motion between scans a and b of the log by the wheel odometry, when both have it.
-std::optional<io::Pose2D> wheelMotion(const io::ScanLog &log, const io::LogEntry &a, const io::LogEntry &b) {
+// m/s: faster than any robot that carries a 2-D LIDAR drives.
+constexpr double kFastestRobot = 100.0;
+
+// Whether the wheel odometry's `increment` over `dt` s measures a motion: finite, and no faster
+// than kFastestRobot. One that is not is a corrupt sample (a log's 1e300 m) or a reset of the
+// odometry's frame: no measurement of the robot's motion, it is neither a guess, nor fused, nor
+// a bridge, nor a deskewing twist.
+bool measuresMotion(const io::Pose2D &increment, double dt) {
+  return std::isfinite(increment.x + increment.y + increment.yaw) &&
+         std::hypot(increment.x, increment.y) <= kFastestRobot * dt;
+}
+
+// The laser's motion between scans a and b of the log by the wheel odometry, when both have it
+// and it measures a motion (measuresMotion) over their interval, at least `usual_interval` s: a
+// LIDAR takes its scans no faster than its rate (wheelMotionOverSweep).
+std::optional<io::Pose2D> wheelMotion(const io::ScanLog &log, const io::LogEntry &a, const io::LogEntry &b,
+                                      double usual_interval) {
   if (!a.odometry || !b.odometry) return std::nullopt;
   const io::Pose2D robot = between(*a.odometry, *b.odometry);
+  if (!measuresMotion(robot, std::max(b.scan.stamp - a.scan.stamp, usual_interval))) return std::nullopt;
   return log.laser_pose ? io::laserMotion(robot, *log.laser_pose) : robot;
 }
 
-// The covariance of wheelMotion(log, a, b) (both have odometry) under `noise`, in the laser's frame.
+// The covariance of wheelMotion(log, a, b, ...) (it has one) under `noise`, in the laser's frame.
 Eigen::Matrix3d wheelMotionCovariance(const io::ScanLog &log, const io::LogEntry &a, const io::LogEntry &b,
                                       const WheelNoise &noise) {
   const io::Pose2D robot = between(*a.odometry, *b.odometry);
@@ -231,8 +247,9 @@ std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::siz
     for (std::size_t j = k + 1; j < log.entries.size(); ++j) {
       if (!log.entries[j].odometry) continue;
       const double dt = std::max(log.entries[j].scan.stamp - begin, usual_interval);
-      if (!(dt > 1e-6)) return std::nullopt;
-      return SweepMotion(sensorTwist(log, between(*log.entries[k].odometry, *log.entries[j].odometry), dt));
+      const io::Pose2D increment = between(*log.entries[k].odometry, *log.entries[j].odometry);
+      if (!(dt > 1e-6) || !measuresMotion(increment, dt)) return std::nullopt;
+      return SweepMotion(sensorTwist(log, increment, dt));
     }
     return std::nullopt;
   }
@@ -245,8 +262,9 @@ std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::siz
   std::optional<SweepMotion> motion;
   for (auto a = first; a + 1 != samples.end() && (a == first || a->stamp < end); ++a) {
     const double dt = (a + 1)->stamp - a->stamp;
-    if (!(dt > 1e-6)) continue;  // repeated stamps carry no velocity
-    const Twist2D twist = sensorTwist(log, between(a->pose, (a + 1)->pose), dt);
+    const io::Pose2D increment = between(a->pose, (a + 1)->pose);
+    if (!(dt > 1e-6) || !measuresMotion(increment, dt)) continue;  // repeated stamps carry no velocity
+    const Twist2D twist = sensorTwist(log, increment, dt);
     if (!motion)
       motion = SweepMotion(twist);
     else
@@ -308,7 +326,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     const double velocity_scale = velocity_dt > 1e-3 ? std::clamp(dt / velocity_dt, 0.0, 3.0) : 0.0;
     const io::Pose2D velocity_step = scaled(velocity_motion, velocity_scale);
     const io::Pose2D by_velocity = compose(previous, velocity_step);
-    const auto wheel = wheelMotion(log, entries[k - 1], entries[k]);
+    const auto wheel = wheelMotion(log, entries[k - 1], entries[k], usual_interval);
     io::Pose2D expected = previous;
     if (options.guess == GuessSource::kOdometry && wheel) expected = compose(previous, *wheel);
     if (options.guess == GuessSource::kConstantVelocity) expected = by_velocity;
@@ -388,11 +406,12 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
     // The wheels are fused with every registration when they are the guess, and otherwise with
     // those that leave a direction free: there they decide that direction only, where a bridge
     // would take the whole step from them.
+    const auto wheel_over_step =
+        reference == k - 1 ? wheel : wheelMotion(log, entries[reference], entries[k], usual_interval);
     if ((options.guess == GuessSource::kOdometry || leavesADirectionFree(match)) && options.fuse_wheel_odometry &&
-        entries[reference].odometry && entries[k].odometry) {
-      const Fused fused =
-          fuseWithWheels(match, *wheelMotion(log, entries[reference], entries[k]),
-                         wheelMotionCovariance(log, entries[reference], entries[k], options.wheel_noise));
+        wheel_over_step) {
+      const Fused fused = fuseWithWheels(
+          match, *wheel_over_step, wheelMotionCovariance(log, entries[reference], entries[k], options.wheel_noise));
       run.stats.fused += fused != Fused::kNo;
       run.stats.pinned_by_wheels += fused == Fused::kPinned;
     }

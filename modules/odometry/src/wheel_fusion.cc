@@ -39,8 +39,11 @@ Eigen::Matrix3d wheelCovariance(const io::Pose2D &increment, const WheelNoise &n
 
 std::optional<FusedMotion> fuse(const io::Pose2D &scan, const Eigen::Matrix3d &scan_information,
                                 const io::Pose2D &wheel, const Eigen::Matrix3d &wheel_covariance) {
+  const bool finite = std::isfinite(scan.x + scan.y + scan.yaw + wheel.x + wheel.y + wheel.yaw) &&
+                      scan_information.allFinite() && wheel_covariance.allFinite();
+  if (!finite) return std::nullopt;  // a corrupt sample: its arithmetic would give NaN
   const Eigen::LLT<Eigen::Matrix3d> wheel_solver(wheel_covariance);
-  if (wheel_solver.info() != Eigen::Success || !scan_information.allFinite()) return std::nullopt;
+  if (wheel_solver.info() != Eigen::Success) return std::nullopt;
   const Eigen::Matrix3d wheel_information = wheel_solver.solve(Eigen::Matrix3d::Identity());
   const Eigen::LLT<Eigen::Matrix3d> solver(scan_information + wheel_information);
   if (solver.info() != Eigen::Success) return std::nullopt;

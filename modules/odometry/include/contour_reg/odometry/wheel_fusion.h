@@ -54,7 +54,8 @@ struct FusedMotion {
 
 /// The information-weighted mean of the scans' motion (information `scan_information`, which
 /// may be zero along a free direction) and the wheels' (covariance `wheel_covariance`, positive
-/// definite). None when the two together do not pin every direction.
+/// definite). None when the two together do not pin every direction, or a number is not
+/// finite (a corrupt wheel sample of 1e300 m has a covariance of 1e600).
 std::optional<FusedMotion> fuse(const io::Pose2D &scan, const Eigen::Matrix3d &scan_information,
                                 const io::Pose2D &wheel, const Eigen::Matrix3d &wheel_covariance);
 
