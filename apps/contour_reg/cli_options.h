@@ -38,9 +38,6 @@ inline std::string logStem(const std::string &path) {
   return p.filename().string();
 }
 
-/// m: no robot carries its LIDAR further from its base_link.
-inline constexpr double kFarthestMounting = 100.0;
-
 /// --laser-pose X Y YAW: the laser's pose on the robot (m, m, deg), `what` said of it in the help.
 inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &laser_pose, const std::string &what) {
   command
@@ -49,7 +46,7 @@ inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &las
           [&laser_pose](const std::vector<double> &v) {
             for (double value : v)
               if (!std::isfinite(value)) throw CLI::ValidationError("--laser-pose", "X Y YAW must be finite numbers");
-            if (std::abs(v[0]) > kFarthestMounting || std::abs(v[1]) > kFarthestMounting || std::abs(v[2]) > 360.0)
+            if (std::hypot(v[0], v[1]) > io::kFarthestMounting || std::abs(v[2]) > 360.0)
               throw CLI::ValidationError("--laser-pose",
                                          "X and Y must lie within 100 m of the robot, YAW within 360 deg");
             laser_pose = io::Pose2D{v[0], v[1], v[2] * M_PI / 180.0};

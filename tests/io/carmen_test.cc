@@ -267,6 +267,24 @@ TEST(Carmen, RobotLaserLinesGiveTheMounting) {
   EXPECT_NEAR(back.laser_pose->yaw, -0.5, 1e-6);
 }
 
+// A mounting 1e300 m from the robot (a corrupt line) would put every pose of the robot there:
+// an error naming the file, unless the user gives the mounting.
+TEST(Carmen, AMountingNoRobotCarriesIsAnError) {
+  TempDir dir;
+  const std::string path = dir.write(
+      "far.log", "ROBOTLASER1 0 -1.5 3.0 1.0 30 0.01 0 4 1.0 2.0 3.0 4.0 0 1e300 2 0 1 2 0 0 0 0 0 0 7.5 host 7.5\n");
+  try {
+    readLog(path);
+    FAIL() << "a laser 1e300 m from the robot must be refused";
+  } catch (const ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find("far.log: the log mounts the laser 1e+300 m"), std::string::npos)
+        << error.what();
+  }
+  LogReadOptions options;
+  options.laser_pose = Pose2D{0.2, 0.0, 0.0};
+  EXPECT_DOUBLE_EQ(readLog(path, options).laser_pose->x, 0.2);
+}
+
 TEST(Carmen, SharedLogsRead) {
   const std::string path = test::sharedDataset("intel/intel.clf");
   if (path.empty()) GTEST_SKIP() << "../shared/datasets/intel is absent";

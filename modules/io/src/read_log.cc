@@ -1,6 +1,8 @@
 #include "contour_reg/io/read_log.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -51,6 +53,17 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
       if (entry.scan.time_increment == 0.0)
         entry.scan.time_increment = beamInterval(options.scan_period, entry.scan.angle_increment);
   if (options.laser_pose) log.laser_pose = options.laser_pose;
+  if (const std::optional<Pose2D> &mounting = log.laser_pose) {
+    const double distance = std::hypot(mounting->x, mounting->y);
+    if (!(distance <= kFarthestMounting) || !std::isfinite(mounting->yaw)) {
+      char message[200];
+      std::snprintf(message, sizeof message,
+                    ": the log mounts the laser %.3g m from the robot, turned %.3g rad: no robot carries it so (at "
+                    "most %.0f m); give its mounting with --laser-pose X Y YAW",
+                    distance, mounting->yaw, kFarthestMounting);
+      throw ReadError(path + message);
+    }
+  }
   if (!options.wheel_odometry) {
     log.wheel_odometry.clear();
     for (LogEntry &entry : log.entries) entry.odometry.reset();

@@ -58,6 +58,10 @@ struct ScanLog {
   std::optional<Pose2D> laser_pose;
 };
 
+/// m: no robot carries its LIDAR further from its base_link. A log that mounts it further
+/// (a corrupt ROBOTLASER1 line or transform) is an error (readLog).
+inline constexpr double kFarthestMounting = 100.0;
+
 /// Thrown when a file cannot be used at all (missing, unreadable, no usable scan).
 class ReadError : public std::runtime_error {
  public:
