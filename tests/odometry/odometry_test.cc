@@ -606,6 +606,31 @@ TEST(ScanMatcher, EveryMethodRegistersAPairOfTheRoom) {
   EXPECT_EQ(makeScanMatcher("no-such-method"), nullptr);
 }
 
+// PCL's methods register in single precision: a guess that puts the source beyond 10 km (where a
+// float resolves no millimetre, and 1e38 m overflows in ICP's search) is refused with a status
+// of its own, where it ended the process in PCL's nearest-neighbour search. The contour methods
+// work in double precision and find the pair without the guess.
+TEST(ScanMatcher, AGuessFarBeyondTheScansIsRefusedByPclsMethods) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  const simulation::World world = simulation::makeFurnishedRoom();
+  const LaserScan target = test::scanFrom(world, test::pose2d(0.0, 0.0, 0.0), 0.0);
+  const LaserScan source = test::scanFrom(world, test::pose2d(0.1, 0.05, 2.0), 0.0);
+  for (const double far : {1e300, 1e38, 2e4}) {
+    Eigen::Matrix3d guess = Eigen::Matrix3d::Identity();
+    guess(0, 2) = far;
+    for (const std::string &name : methodNames()) {
+      const MatchResult result = makeScanMatcher(name)->match(target, source, guess);
+      if (name == "contour" || name == "contour+icp") {
+        EXPECT_TRUE(result.converged) << name << " " << far;
+        EXPECT_NEAR(result.transform(0, 2), 0.1, 0.05) << name << " " << far;
+        continue;
+      }
+      EXPECT_FALSE(result.converged) << name << " " << far;
+      EXPECT_EQ(result.status, "guess_out_of_range") << name << " " << far;
+    }
+  }
+}
+
 // A covariance, and the judge's overlap and score, come only with the estimate they describe:
 // the contour method's converged one; contour+icp's ICP moves the contour stage's estimate, and
 // ICP gives none. A pair of the room 0.1 m apart shares nearly all of its contour and puts none

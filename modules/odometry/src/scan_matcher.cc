@@ -175,6 +175,15 @@ MatchResult ScanMatcher::match(const Cloud::Ptr &target, const Cloud::Ptr &sourc
   return align(guess, start);
 }
 
+namespace {
+
+// m: PCL's methods register in single precision, which resolves points 10 km from the origin to
+// a millimetre, and no finer; a guess beyond it, far outside any scan's range, leaves them
+// nothing to match (and from 1e38 m their search meets infinite coordinates).
+constexpr double kFarthestGuess = 1e4;
+
+}  // namespace
+
 MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady_clock::time_point start) {
   MatchResult result;
   Cloud aligned;
@@ -182,6 +191,13 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
     result.transform = guess;
     result.reason = target_cloud_->empty() ? "target scan has no valid beam" : "source scan has no valid beam";
     result.status = "empty_scan";
+    return result;
+  }
+  if (!contour_ && !(guess.allFinite() && guess.block<2, 1>(0, 2).norm() <= kFarthestGuess)) {
+    result.transform = guess;
+    result.reason =
+        "the guess moves the source more than 10 km, beyond what " + name_ + " resolves in single precision";
+    result.status = "guess_out_of_range";
     return result;
   }
   registration_->align(aligned, toMatrix4(guess));

@@ -35,7 +35,8 @@ struct MatchResult {
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();
   bool converged = false;
   bool degenerate = false;
-  std::string status;         ///< short failure class ("too_few_special_points", "not_converged"); "" when converged
+  /// short failure class ("too_few_special_points", "not_converged", "guess_out_of_range"); "" when converged
+  std::string status;
   std::string reason;         ///< why not converged, in words ("" when converged)
   double milliseconds = 0.0;  ///< registration only (features of new scans included)
   /// x, y, yaw; zero when the method gives none (ICP, NDT, GICP, and contour+icp, whose ICP
