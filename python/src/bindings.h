@@ -48,8 +48,11 @@ Eigen::Matrix3d matrixOf(const py::handle &array, const char *what);
 py::array_t<double> trajectoryArray(const io::Trajectory &trajectory);
 io::Trajectory trajectoryOf(const py::handle &array, const char *what);
 
-/// None or (x m, y m, yaw rad) and back; anything else raises ValueError naming `what`.
+/// None or (x m, y m, yaw rad) and back.
 py::object poseOrNone(const std::optional<io::Pose2D> &pose);
-std::optional<io::Pose2D> poseFrom(const py::object &value, const char *what);
+/// A laser's mounting on the robot from None or (x m, y m, yaw rad): anything else, or a
+/// mounting more than io::kFarthestMounting from the robot or turned more than 2 pi, raises
+/// ValueError naming `what`.
+std::optional<io::Pose2D> mountingFrom(const py::object &value, const char *what);
 
 }  // namespace contour_reg::python

@@ -118,7 +118,11 @@ io::Trajectory trajectoryOf(const py::handle &array, const char *what) {
     throw py::value_error(std::string(what) + " must be an N x 4 array (stamp s, x m, y m, yaw rad)");
   const auto v = a.unchecked<2>();
   io::Trajectory trajectory(static_cast<std::size_t>(v.shape(0)));
-  for (py::ssize_t n = 0; n < v.shape(0); ++n) trajectory[n] = {v(n, 0), {v(n, 1), v(n, 2), v(n, 3)}};
+  for (py::ssize_t n = 0; n < v.shape(0); ++n) {
+    if (!std::isfinite(v(n, 0) + v(n, 1) + v(n, 2) + v(n, 3)))
+      throw py::value_error(std::string(what) + " must be finite: row " + std::to_string(n) + " is not");
+    trajectory[n] = {v(n, 0), {v(n, 1), v(n, 2), v(n, 3)}};
+  }
   return trajectory;
 }
 

@@ -1,6 +1,7 @@
 // The evaluation metrics (end point, drift, ATE, relation errors) and planar pose helpers.
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 
 #include "bindings.h"
@@ -18,7 +19,11 @@ std::vector<io::Relation> relationsOf(const py::handle &array) {
     throw py::value_error("relations must be an N x 5 array (t1 s, t2 s, x m, y m, yaw rad), as read_relations()");
   const auto v = a.unchecked<2>();
   std::vector<io::Relation> relations(static_cast<std::size_t>(v.shape(0)));
-  for (py::ssize_t n = 0; n < v.shape(0); ++n) relations[n] = {v(n, 0), v(n, 1), {v(n, 2), v(n, 3), v(n, 4)}};
+  for (py::ssize_t n = 0; n < v.shape(0); ++n) {
+    if (!std::isfinite(v(n, 0) + v(n, 1) + v(n, 2) + v(n, 3) + v(n, 4)))
+      throw py::value_error("relations must be finite: row " + std::to_string(n) + " is not");
+    relations[n] = {v(n, 0), v(n, 1), {v(n, 2), v(n, 3), v(n, 4)}};
+  }
   return relations;
 }
 
@@ -35,6 +40,7 @@ py::dict relationDict(const evaluation::RelationErrors &r) {
 
 py::dict evaluateTrajectory(const py::handle &estimate, const py::object &ground_truth, const py::object &relations,
                             double local_dt) {
+  if (!(local_dt > 0.0)) throw py::value_error("local_dt must be > 0 s");
   const io::Trajectory est = trajectoryOf(estimate, "estimate");
   io::Trajectory gt;
   std::vector<io::Relation> rel;
@@ -78,6 +84,7 @@ void bindEvaluation(py::module_ &m) {
   m.def(
       "relation_errors",
       [](const py::handle &estimate, const py::handle &relations, double max_dt) {
+        if (!(max_dt > 0.0)) throw py::value_error("max_dt must be > 0 s (inf: every relation)");
         return relationDict(
             evaluation::relationErrors(trajectoryOf(estimate, "estimate"), relationsOf(relations), max_dt));
       },

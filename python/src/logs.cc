@@ -71,15 +71,17 @@ py::object poseOrNone(const std::optional<io::Pose2D> &pose) {
   return pose ? py::object(py::make_tuple(pose->x, pose->y, pose->yaw)) : py::object(py::none());
 }
 
-std::optional<io::Pose2D> poseFrom(const py::object &value, const char *what) {
+std::optional<io::Pose2D> mountingFrom(const py::object &value, const char *what) {
   if (value.is_none()) return std::nullopt;
   std::vector<double> v;
   try {
     v = value.cast<std::vector<double>>();
   } catch (const py::cast_error &) {
   }
-  if (v.size() != 3 || !std::isfinite(v[0] + v[1] + v[2]))
-    throw py::value_error(std::string(what) + " must be None or (x m, y m, yaw rad), finite");
+  if (v.size() != 3 || !std::isfinite(v[0] + v[1] + v[2]) || std::hypot(v[0], v[1]) > io::kFarthestMounting ||
+      std::abs(v[2]) > 2.0 * M_PI)
+    throw py::value_error(std::string(what) +
+                          " must be None or (x m, y m, yaw rad), finite, within 100 m of the robot and 2 pi rad");
   return io::Pose2D{v[0], v[1], v[2]};
 }
 
@@ -109,7 +111,7 @@ void bindLogs(py::module_ &m) {
           "follows them within each sweep")
       .def_property(
           "laser_pose", [](const io::ScanLog &log) { return poseOrNone(log.laser_pose); },
-          [](io::ScanLog &log, const py::object &value) { log.laser_pose = poseFrom(value, "laser_pose"); },
+          [](io::ScanLog &log, const py::object &value) { log.laser_pose = mountingFrom(value, "laser_pose"); },
           "(x m, y m, yaw rad): the laser's pose on the robot (base_link -> laser), when the log says (ROBOTLASER1 "
           "lines, a bag's tf) or it is set; None: unknown, odometry then takes the laser to be at the centre")
       .def_property_readonly(
@@ -127,11 +129,12 @@ void bindLogs(py::module_ &m) {
       "read_log",
       [](const std::string &path, double max_range, const std::string &scan_topic, const std::string &odom_topic,
          double scan_period, const py::object &laser_pose, bool wheel_odometry, long beam_step) {
-        if (!(scan_period >= 0.0)) throw py::value_error("scan_period must be >= 0 s");
+        if (!(scan_period >= 0.0 && scan_period <= 10.0)) throw py::value_error("scan_period must be within 0-10 s");
+        if (!(max_range > 0.0)) throw py::value_error("max_range must be > 0 m");
         if (beam_step < 1) throw py::value_error("beam_step must be >= 1");
         io::LogReadOptions options;
         options.beam_step = static_cast<std::size_t>(beam_step);
-        options.laser_pose = poseFrom(laser_pose, "laser_pose");
+        options.laser_pose = mountingFrom(laser_pose, "laser_pose");
         options.scan_period = scan_period;
         options.max_range = max_range;
         options.scan_topic = scan_topic;

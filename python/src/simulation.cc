@@ -30,7 +30,7 @@ simulation::SimulatedRun simulate(const std::string &path, double rate, const st
   settings.odometry_noise = odometry_noise;
   settings.seed = seed;
   settings.people = people;
-  settings.laser_pose = poseFrom(laser_pose, "laser_pose").value_or(io::Pose2D{});
+  settings.laser_pose = mountingFrom(laser_pose, "laser_pose").value_or(io::Pose2D{});
 
   simulation::World world;
   std::vector<Eigen::Vector2d> route;

@@ -192,6 +192,35 @@ def test_bad_simulation_and_odometry_arguments_raise(bundled_log):
         cr.evaluate(np.zeros((3, 3)))
 
 
+def test_numbers_out_of_range_raise_as_the_command_line_refuses_them(bundled_log):
+    # As the command line's options and TUM and relations files: NaN or infinite rows, a
+    # mounting no robot carries, a reading range or LIDAR turn out of range.
+    truth = np.array([[0, 0, 0, 0], [1, 1, 0, 0], [2, 2, 0, 0.1]], float)
+    unknown = truth.copy()
+    unknown[1, 1] = np.nan
+    with pytest.raises(ValueError, match="estimate must be finite"):
+        cr.evaluate(unknown, ground_truth=truth)
+    with pytest.raises(ValueError, match="ground_truth must be finite"):
+        cr.evaluate(truth, ground_truth=unknown)
+    relations = np.array([[0, 1, 1, 0, 0], [1, 2, 1, 0, 0.1]], float)
+    with pytest.raises(ValueError, match="relations must be finite"):
+        cr.relation_errors(truth, np.where(relations == 0.1, np.inf, relations))
+    with pytest.raises(ValueError, match="max_dt"):
+        cr.relation_errors(truth, relations, max_dt=np.nan)
+    with pytest.raises(ValueError, match="local_dt"):
+        cr.evaluate(truth, relations=relations, local_dt=-5)
+    with pytest.raises(ValueError, match="max_range"):
+        cr.read_log(str(BUNDLED_LOG), max_range=-1)
+    with pytest.raises(ValueError, match="scan_period"):
+        cr.read_log(str(BUNDLED_LOG), scan_period=1e300)
+    with pytest.raises(ValueError, match="laser_pose"):
+        cr.read_log(str(BUNDLED_LOG), laser_pose=(1e300, 0, 0))
+    with pytest.raises(ValueError, match="laser_pose"):
+        bundled_log.laser_pose = (0, 200, 0)
+    with pytest.raises(ValueError, match="laser_pose"):
+        cr.simulate(path="L", laser_pose=(0, 0, 7))
+
+
 def test_a_mounted_laser_gives_the_robots_trajectory(tmp_path):
     mounted = cr.simulate(path="L", laser_pose=(0.3, 0.1, 0.5))
     assert mounted.log.laser_pose == pytest.approx((0.3, 0.1, 0.5))

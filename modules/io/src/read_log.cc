@@ -59,7 +59,7 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
       char message[200];
       std::snprintf(message, sizeof message,
                     ": the log mounts the laser %.3g m from the robot, turned %.3g rad: no robot carries it so (at "
-                    "most %.0f m); give its mounting with --laser-pose X Y YAW",
+                    "most %.0f m); give its mounting instead (--laser-pose X Y YAW, laser_pose= in Python)",
                     distance, mounting->yaw, kFarthestMounting);
       throw ReadError(path + message);
     }
