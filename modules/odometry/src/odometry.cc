@@ -263,7 +263,8 @@ std::optional<SweepMotion> wheelMotionOverSweep(const io::ScanLog &log, std::siz
   for (auto a = first; a + 1 != samples.end() && (a == first || a->stamp < end); ++a) {
     const double dt = (a + 1)->stamp - a->stamp;
     const io::Pose2D increment = between(a->pose, (a + 1)->pose);
-    if (!(dt > 1e-6) || !measuresMotion(increment, dt)) continue;  // repeated stamps carry no velocity
+    // Repeated stamps carry no velocity, a jump (measuresMotion) no motion.
+    if (!(dt > 1e-6) || !measuresMotion(increment, dt)) continue;
     const Twist2D twist = sensorTwist(log, increment, dt);
     if (!motion)
       motion = SweepMotion(twist);
