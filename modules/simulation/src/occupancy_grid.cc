@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include <yaml-cpp/yaml.h>
 #include <opencv2/imgcodecs.hpp>
@@ -149,7 +150,8 @@ void checkGeometry(const cv::Size &size, double resolution, const Eigen::Vector2
 }
 
 OccupancyGrid gridFromImage(const std::string &path, const MapReadOptions &options, const MapSettingsAt &at) {
-  if (!std::filesystem::is_regular_file(path)) throw io::ReadError(path + ": no such map image");
+  std::error_code unreadable;  // a name the file system refuses (too long) is no such image either
+  if (!std::filesystem::is_regular_file(path, unreadable)) throw io::ReadError(path + ": no such map image");
   cv::Mat image;
   try {
     image = cv::imread(path, cv::IMREAD_GRAYSCALE);
