@@ -130,7 +130,7 @@ TEST(OccupancyGrid, MapsNoGridCanHoldAreRefused) {
     pgm << "P5\n100000 100000\n255\n";
   }
   expectRefused(dir.file("huge.pgm"), "huge.pgm");
-  // An image name longer than the file system takes (found by map_fuzzer).
+  // An image name longer than the file system takes: no such image, as a missing one.
   dir.write("long.yaml", "image: " + std::string(300, 'l') + ".pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
   expectRefused(dir.file("long.yaml"), "no such map image");
 }
