@@ -41,7 +41,7 @@ odometry::MatcherSettings matcherSettings(const py::kwargs &settings);
 py::array_t<double> pointsArray(const std::vector<Eigen::Vector2d> &points);
 /// A 3 x 3 float64 array.
 py::array_t<double> matrixArray(const Eigen::Matrix3d &m);
-/// A 3 x 3 matrix from an array-like of that shape (py::value_error otherwise).
+/// A 3 x 3 matrix from a finite array-like of that shape (py::value_error naming `what` otherwise).
 Eigen::Matrix3d matrixOf(const py::handle &array, const char *what);
 
 /// N x 4 (stamp, x, y, yaw) and back; a wrong shape raises ValueError naming `what`.

@@ -92,11 +92,12 @@ py::array_t<double> matrixArray(const Eigen::Matrix3d &m) {
 Eigen::Matrix3d matrixOf(const py::handle &array, const char *what) {
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
   if (!a || a.ndim() != 2 || a.shape(0) != 3 || a.shape(1) != 3)
-    throw py::value_error(std::string(what) + " must be a 3 x 3 array (a planar homogeneous transform)");
+    throw py::value_error(std::string(what) + " must be a 3 x 3 array");
   const auto v = a.unchecked<2>();
   Eigen::Matrix3d m;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) m(r, c) = v(r, c);
+  if (!m.allFinite()) throw py::value_error(std::string(what) + " must be finite");
   return m;
 }
 

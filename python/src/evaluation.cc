@@ -65,7 +65,8 @@ py::dict evaluateTrajectory(const py::handle &estimate, const py::object &ground
 
 io::Pose2D poseOf(const py::handle &pose) {
   const auto p = pose.cast<std::vector<double>>();
-  if (p.size() != 3) throw py::value_error("a pose is (x m, y m, yaw rad)");
+  if (p.size() != 3 || !std::isfinite(p[0] + p[1] + p[2]))
+    throw py::value_error("a pose is (x m, y m, yaw rad), finite");
   return {p[0], p[1], p[2]};
 }
 

@@ -37,7 +37,6 @@ odometry::MatchResult registerPair(const py::handle &source, const py::handle &t
                                    const py::object &target_twist, const py::kwargs &settings) {
   const odometry::MatcherSettings s = matcherSettings(settings);
   const Eigen::Matrix3d start = guess.is_none() ? Eigen::Matrix3d::Identity() : matrixOf(guess, "guess");
-  if (!start.allFinite()) throw py::value_error("guess must be finite");
   std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, s);
   if (!matcher) throw py::value_error("unknown method '" + method + "' (methods: " + methodList() + ")");
   const odometry::Cloud::Ptr source_beams = beamsOf(source, twistOf(source_twist, "source_twist")),

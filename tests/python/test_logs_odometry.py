@@ -123,6 +123,11 @@ def test_normalised_error_squared_weighs_the_error_by_the_covariance_and_the_ref
     assert cr.normalised_error_squared((1.1, 2, 0.1), (1, 2, 0.1), covariance, (0.04, 0)) == pytest.approx(4.0)
     with pytest.raises(ValueError):
         cr.normalised_error_squared((1, 2, 0.1), (1, 2, 0.1), covariance, (-1, 0))
+    # NaN in a pose or a covariance is refused, where it gave a NEES of NaN or inf.
+    with pytest.raises(ValueError, match="finite"):
+        cr.normalised_error_squared((np.nan, 2, 0.1), (1, 2, 0.1), covariance)
+    with pytest.raises(ValueError, match="covariance must be finite"):
+        cr.normalised_error_squared((1, 2, 0.1), (1, 2, 0.1), np.full((3, 3), np.nan))
     # The covariance of a registration covers its error against the truth.
     gt = s_run.ground_truth
     result = cr.register(s_run.log[10], s_run.log[5])
@@ -146,6 +151,8 @@ def test_triangle_closure_weighs_how_far_three_registrations_fail_to_compose(s_r
     assert 0 <= closure["nees"] < 11.34
     with pytest.raises(ValueError):
         cr.triangle_closure((0, 0), small, (0, 0, 0), small, (0, 0, 0), small)
+    with pytest.raises(ValueError, match="ab_covariance must be finite"):
+        cr.triangle_closure((0, 0, 0), np.full((3, 3), np.nan), (0, 0, 0), small, (0, 0, 0), small)
 
 
 def test_write_and_read_back(tmp_path, s_run):
