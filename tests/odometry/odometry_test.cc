@@ -608,8 +608,8 @@ TEST(ScanMatcher, EveryMethodRegistersAPairOfTheRoom) {
 
 // PCL's methods register in single precision: a guess that puts the source beyond 10 km (where a
 // float resolves no millimetre, and 1e38 m overflows in ICP's search) is refused with a status
-// of its own, where it ended the process in PCL's nearest-neighbour search. The contour methods
-// work in double precision and find the pair without the guess.
+// of its own, before PCL's nearest-neighbour search would end the process with an assertion.
+// The contour methods work in double precision and find the pair without the guess.
 TEST(ScanMatcher, AGuessFarBeyondTheScansIsRefusedByPclsMethods) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   const simulation::World world = simulation::makeFurnishedRoom();
