@@ -46,10 +46,11 @@ inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &las
           [&laser_pose](const std::vector<double> &v) {
             for (double value : v)
               if (!std::isfinite(value)) throw CLI::ValidationError("--laser-pose", "X Y YAW must be finite numbers");
-            if (std::hypot(v[0], v[1]) > io::kFarthestMounting || std::abs(v[2]) > 360.0)
+            const io::Pose2D mounting{v[0], v[1], v[2] * M_PI / 180.0};
+            if (!io::isMounting(mounting))
               throw CLI::ValidationError("--laser-pose",
                                          "X and Y must lie within 100 m of the robot, YAW within 360 deg");
-            laser_pose = io::Pose2D{v[0], v[1], v[2] * M_PI / 180.0};
+            laser_pose = mounting;
           },
           "The laser's pose on the robot, base_link -> laser (m, m, deg), " + what)
       ->expected(3)
@@ -71,7 +72,7 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
                   "Scans without beam timing (CARMEN, PCD): s per turn of the LIDAR, beams taken in index order "
                   "from the stamp (s, 0-10; 0: none)")
       ->capture_default_str()
-      ->check(inRange(0.0, 10.0));
+      ->check(inRange(0.0, io::LogReadOptions::kLongestScanPeriod));
   command
       .add_option("--beam-step", options.beam_step,
                   "Keep every N-th beam from the first: the scans of a LIDAR with N times the angular step (>= 1)")

@@ -45,6 +45,11 @@ void keepEveryBeam(std::size_t step, LaserScan &scan) {
 
 ScanLog readLog(const std::string &path, const LogReadOptions &options) {
   if (options.beam_step == 0) throw std::invalid_argument("beam_step must be >= 1");
+  if (!(options.max_range > 0.0)) throw std::invalid_argument("max_range must be > 0 m");
+  if (!(options.scan_period >= 0.0 && options.scan_period <= LogReadOptions::kLongestScanPeriod))
+    throw std::invalid_argument("scan_period must be within 0-10 s");
+  if (options.laser_pose && !isMounting(*options.laser_pose))
+    throw std::invalid_argument("laser_pose must be finite, within 100 m of the robot and a turn (2 pi rad)");
   ScanLog log = readAny(path, options);
   if (options.beam_step > 1)
     for (LogEntry &entry : log.entries) keepEveryBeam(options.beam_step, entry.scan);
@@ -53,16 +58,13 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
       if (entry.scan.time_increment == 0.0)
         entry.scan.time_increment = beamInterval(options.scan_period, entry.scan.angle_increment);
   if (options.laser_pose) log.laser_pose = options.laser_pose;
-  if (const std::optional<Pose2D> &mounting = log.laser_pose) {
-    const double distance = std::hypot(mounting->x, mounting->y);
-    if (!(distance <= kFarthestMounting) || !std::isfinite(mounting->yaw)) {
-      char message[200];
-      std::snprintf(message, sizeof message,
-                    ": the log mounts the laser %.3g m from the robot, turned %.3g rad: no robot carries it so (at "
-                    "most %.0f m); give its mounting instead (--laser-pose X Y YAW, laser_pose= in Python)",
-                    distance, mounting->yaw, kFarthestMounting);
-      throw ReadError(path + message);
-    }
+  if (const std::optional<Pose2D> &mounting = log.laser_pose; mounting && !isMounting(*mounting)) {
+    char message[200];
+    std::snprintf(message, sizeof message,
+                  ": the log mounts the laser %.3g m from the robot, turned %.3g rad: no robot carries it so (at "
+                  "most %.0f m); give its mounting instead (--laser-pose X Y YAW, laser_pose= in Python)",
+                  std::hypot(mounting->x, mounting->y), mounting->yaw, kFarthestMounting);
+    throw ReadError(path + message);
   }
   if (!options.wheel_odometry) {
     log.wheel_odometry.clear();

@@ -20,6 +20,8 @@ struct LogReadOptions {
   /// as sensor_msgs orders them) scan_period * angle_increment / 2 pi apart, the first at the
   /// scan's stamp (LaserScan::time_increment). 0: no timing.
   double scan_period = 0.0;
+  /// s: no spinning LIDAR turns slower.
+  static constexpr double kLongestScanPeriod = 10.0;
   /// The laser's pose on the robot (base_link -> laser; x, y in m, yaw in rad), over what the
   /// log says (ScanLog::laser_pose: ROBOTLASER1 lines, a bag's tf).
   std::optional<Pose2D> laser_pose;
@@ -35,7 +37,10 @@ struct LogReadOptions {
 /// Reads `path` with the reader its kind calls for, then gives scans without beam timing
 /// the timing of `scan_period`, the log the mounting `laser_pose` when set, and leaves the
 /// wheel odometry out without `wheel_odometry`, and keeps every `beam_step`-th beam. Throws
-/// ReadError naming the file, std::invalid_argument for a beam_step of 0.
+/// ReadError naming the file (a log that mounts the laser where io::isMounting says no robot
+/// does among its reasons), std::invalid_argument for options out of range: max_range not
+/// above 0, scan_period outside 0-kLongestScanPeriod, beam_step 0, a laser_pose that is no
+/// mounting.
 ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
 
 /// The index of the entry whose scan stamp is nearest `stamp` (s); the later one on a tie.

@@ -2,6 +2,7 @@
 /// @file scan_log.h
 /// A log of scans with per-scan odometry, as the readers produce it.
 
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -61,6 +62,13 @@ struct ScanLog {
 /// m: no robot carries its LIDAR further from its base_link. A log that mounts it further
 /// (a corrupt ROBOTLASER1 line or transform) is an error (readLog).
 inline constexpr double kFarthestMounting = 100.0;
+
+/// Whether `pose` can be a laser's mounting on a robot: finite, within kFarthestMounting of
+/// base_link, turned by at most a whole turn.
+inline bool isMounting(const Pose2D &pose) {
+  return std::isfinite(pose.x + pose.y + pose.yaw) && std::hypot(pose.x, pose.y) <= kFarthestMounting &&
+         std::abs(pose.yaw) <= 2.0 * M_PI;
+}
 
 /// Thrown when a file cannot be used at all (missing, unreadable, no usable scan).
 class ReadError : public std::runtime_error {
