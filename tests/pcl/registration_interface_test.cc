@@ -1,5 +1,6 @@
 // pcl::Registration's contract, checked the way a PCL pipeline uses a registration: only
 // through pcl::Registration<PointXYZ, PointXYZ>::Ptr, for both contour_reg classes.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -190,6 +191,35 @@ TYPED_TEST(RegistrationInterface, NoInputFailsWithoutCrashing) {
   registration->align(aligned);
   EXPECT_TRUE(registration->hasConverged());
   pcl::console::setVerbosityLevel(verbosity);
+}
+
+// A beam without a return is a NaN point, as the classes take their scans; PCL's
+// getFitnessScore() searches the target for every source point, those too. The score is the
+// mean squared distance of the finite source points, moved by the answer, to their nearest
+// target point.
+TYPED_TEST(RegistrationInterface, FitnessScoreSkipsBeamsWithoutReturn) {
+  const Registration::Ptr registration = TypeParam::make();
+  const auto source = scan(runPose(1), 2), target = scan(runPose(0), 1);
+  for (std::size_t k = 100; k < 110; ++k) (*source)[k].x = (*source)[k].y = (*source)[k].z = NAN;
+  (*target)[50].x = (*target)[50].y = (*target)[50].z = NAN;
+  registration->setInputSource(source);
+  registration->setInputTarget(target);
+  Cloud aligned;
+  registration->align(aligned);
+  ASSERT_TRUE(registration->hasConverged());
+  const Eigen::Matrix4f motion = registration->getFinalTransformation();
+  double squares = 0.0;
+  int counted = 0;
+  for (const pcl::PointXYZ &p : *source) {
+    if (!std::isfinite(p.x)) continue;
+    const Eigen::Vector4f moved = motion * Eigen::Vector4f(p.x, p.y, p.z, 1.0f);
+    float nearest = INFINITY;
+    for (const pcl::PointXYZ &q : *target)
+      if (std::isfinite(q.x)) nearest = std::min(nearest, (moved.head<3>() - q.getVector3fMap()).squaredNorm());
+    squares += nearest;
+    ++counted;
+  }
+  EXPECT_NEAR(registration->getFitnessScore(), squares / counted, 1e-6);
 }
 
 // The odometry path: swapSourceAndTarget() makes the last source the target (with what was

@@ -39,7 +39,8 @@ namespace contour_reg {
 /// setRegistrationParams() write the same settings: whichever is called last holds.
 /// setEuclideanFitnessEpsilon() and PCL's convergence criteria have no effect (RANSAC and the
 /// judgement of the result decide convergence). getFinalTransformation() is the answer,
-/// getFitnessScore() PCL's score of it; nr_iterations_ counts the RANSAC iterations.
+/// getFitnessScore() PCL's score of it over the finite source points (a NaN beam has no
+/// nearest target point: lazy_kdtree.h); nr_iterations_ counts the RANSAC iterations.
 ///
 /// The initial guess of align(output, guess): the corner match needs none (the fragment
 /// distance is rotation invariant). The guess is refined on the contours where the corners

@@ -7,6 +7,7 @@
 #include <pcl/filters/filter.h>
 
 #include "contour_reg/coarse_to_fine_registration.h"
+#include "contour_reg/lazy_kdtree.h"
 
 namespace contour_reg {
 
@@ -28,6 +29,7 @@ typename pcl::PointCloud<PointT>::ConstPtr finitePoints(const typename pcl::Poin
 template <typename PointSource, typename PointTarget, typename Scalar>
 CoarseToFineRegistration<PointSource, PointTarget, Scalar>::CoarseToFineRegistration() {
   this->reg_name_ = "CoarseToFineRegistration";
+  this->tree_.reset(new LazyKdTree<PointTarget>());  // getFitnessScore()'s: built when it searches
   coarse_ = pcl::make_shared<Coarse>();
   auto icp = pcl::make_shared<pcl::IterativeClosestPoint<PointSource, PointTarget, Scalar>>();
   icp->setTransformationEstimation(
