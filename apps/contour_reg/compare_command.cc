@@ -201,9 +201,9 @@ Row readRow(const CompareOptions &options, const Input &input, const std::string
   Row row;
   row.input = input.name;
   row.method = method;
-  row.registrations = static_cast<std::size_t>(recordValue(record, "registrations", path));
-  row.failures = static_cast<std::size_t>(recordValue(record, "failures", path));
-  row.degenerate = static_cast<std::size_t>(recordValue(record, "degenerate", path));
+  row.registrations = recordCount(record, "registrations", path);
+  row.failures = recordCount(record, "failures", path);
+  row.degenerate = recordCount(record, "degenerate", path);
   row.median_ms = recordValue(record, "median_ms", path);
   row.p95_ms = recordValue(record, "p95_ms", path);
   row.trajectory = io::readTum(trajectoryPath(options, input.name, method));

@@ -191,9 +191,9 @@ std::vector<experiment::ArrivalResult> readArrival(const ExperimentOptions &opti
     r.arrival = arrival.arrival;
     r.method = method;
     r.path_length = recordValue(record, "path_length_m", path);
-    r.scans = static_cast<std::size_t>(recordValue(record, "scans", path));
-    r.registrations = static_cast<std::size_t>(recordValue(record, method + ".registrations", path));
-    r.failures = static_cast<std::size_t>(recordValue(record, method + ".failures", path));
+    r.scans = recordCount(record, "scans", path);
+    r.registrations = recordCount(record, method + ".registrations", path);
+    r.failures = recordCount(record, method + ".failures", path);
     r.end_point_error = recordValue(record, method + ".end_point_error_m", path);
     r.end_point_percent = recordValue(record, method + ".end_point_percent", path);
     r.median_ms = recordValue(record, method + ".median_ms", path);

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -93,11 +95,16 @@ JobRecord readJobRecord(const std::string &path, const std::string &job) {
   std::string line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
     if (line.empty() || line[0] == '#') continue;
+    // NAME VALUE, the value as writeJobRecord wrote it (%.17g: nan and inf too).
     std::istringstream fields(line);
-    std::string name;
+    std::string name, text, rest;
     double value = 0.0;
-    if (!(fields >> name >> value) || !(fields >> std::ws).eof())
-      throw io::ReadError(path + ":" + std::to_string(number) + ": expected NAME VALUE");
+    bool parsed = fields >> name >> text && !(fields >> rest);
+    if (parsed) {
+      const std::from_chars_result read = std::from_chars(text.data(), text.data() + text.size(), value);
+      parsed = read.ec == std::errc() && read.ptr == text.data() + text.size();
+    }
+    if (!parsed) throw io::ReadError(path + ":" + std::to_string(number) + ": expected NAME VALUE: " + line);
     record[name] = value;
   }
   return record;
@@ -107,6 +114,16 @@ double recordValue(const JobRecord &record, const std::string &name, const std::
   const auto found = record.find(name);
   if (found == record.end()) throw io::ReadError(path + ": no value '" + name + "'");
   return found->second;
+}
+
+std::size_t recordCount(const JobRecord &record, const std::string &name, const std::string &path) {
+  const double value = recordValue(record, name, path);
+  if (!(value >= 0.0 && value <= kMostCounted && value == std::floor(value))) {
+    char shown[64];
+    std::snprintf(shown, sizeof shown, "%.17g", value);
+    throw io::ReadError(path + ": '" + name + "' is not a count: " + shown);
+  }
+  return static_cast<std::size_t>(value);
 }
 
 void reportFinishedJob(std::size_t done, std::size_t total, const std::string &what) {

@@ -38,6 +38,10 @@ void writeJobRecord(const std::string &path, const std::string &title, const Job
 JobRecord readJobRecord(const std::string &path, const std::string &job);
 /// The value `name` of a record, or a ReadError naming the file.
 double recordValue(const JobRecord &record, const std::string &name, const std::string &path);
+/// A value of a record that counts something (registrations, failures, scans): a whole number
+/// from 0 to kMostCounted, or a ReadError naming the file and the value.
+constexpr double kMostCounted = 1e15;
+std::size_t recordCount(const JobRecord &record, const std::string &name, const std::string &path);
 
 /// Tells a log (stderr that is not a terminal) that one job of `total` has finished: one
 /// line per job, as a scheduler's log wants it. Silent on a terminal, where a bar shows progress.

@@ -38,6 +38,20 @@ endif()
 expect_match("${err}" "job 2/2 done: L-hokuyo-2hz ndt2d")  # one line per job, stderr not a terminal
 expect_run(0 ${STUDY} --out ${WORK_DIR}/fan --merge)
 
+# A record that is not what a job writes is refused naming the file and the value: a count
+# that is negative or not whole, a number that does not parse.
+set(record ${WORK_DIR}/fan/jobs/L-hokuyo-2hz.contour.txt)
+file(READ ${record} good_record)
+foreach(bad "failures -5" "registrations 1e300" "failures 2.5" "median_ms fast")
+  string(REGEX MATCH "^[a-z_]+" name "${bad}")
+  string(REGEX REPLACE "${name} [^\n]*" "${bad}" bad_record "${good_record}")
+  file(WRITE ${record} "${bad_record}")
+  expect_run(2 ${STUDY} --out ${WORK_DIR}/fan --merge)
+  expect_match("${LAST_ERR}" "L-hokuyo-2hz.contour.txt.*${name}")
+endforeach()
+file(WRITE ${record} "${good_record}")
+expect_run(0 ${STUDY} --out ${WORK_DIR}/fan --merge)
+
 # results.csv without its last two columns (median and p95 ms), and table.md without its
 # last two cells: the same.
 foreach(run single fan)
