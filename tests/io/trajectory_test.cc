@@ -45,6 +45,24 @@ TEST(Tum, ABadLineIsAnErrorNamingFileAndLine) {
   }
 }
 
+// A quaternion is the rotation of its unit quaternion, whatever its norm (a file written by
+// hand, or with few digits); one of norm zero is no rotation, an error naming file and line.
+TEST(Tum, AQuaternionIsTheRotationOfItsUnitQuaternion) {
+  test::TempDir dir;
+  const Trajectory read = readTum(dir.write("t.tum", "1 0 0 0 0 0 10 10\n2 0 0 0 0 0 -0.5 0.5\n3 0 0 0 0 0 0 2\n"));
+  ASSERT_EQ(read.size(), 3u);
+  EXPECT_NEAR(read[0].pose.yaw, M_PI / 2, 1e-12);
+  EXPECT_NEAR(read[1].pose.yaw, -M_PI / 2, 1e-12);
+  EXPECT_NEAR(read[2].pose.yaw, 0.0, 1e-12);
+  const auto path = dir.write("zero.tum", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 0\n");
+  try {
+    readTum(path);
+    FAIL() << "a quaternion of norm zero was read";
+  } catch (const ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find(path + ":2"), std::string::npos) << error.what();
+  }
+}
+
 TEST(Relations, MotionIsTheSecondPoseInTheFrameOfTheFirst) {
   test::TempDir dir;
   const auto relations = readRelations(dir.write("r.relations", "10.5 12.0 0.3 -0.1 0 0 0 0.25\n"));

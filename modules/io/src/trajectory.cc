@@ -10,8 +10,10 @@ namespace contour_reg::io {
 
 namespace {
 
-// Reads a whitespace table of at least `columns` numbers per line, skipping '#' lines.
-std::vector<std::vector<double>> readTable(const std::string &path, std::size_t columns) {
+// Reads a whitespace table of at least `columns` numbers per line, skipping '#' lines; a row
+// for which `check` says what is wrong is an error naming the line.
+std::vector<std::vector<double>> readTable(const std::string &path, std::size_t columns,
+                                           const char *(*check)(const std::vector<double> &) = nullptr) {
   detail::LineReader reader(path);
   if (!reader.isOpen()) throw ReadError(path + ": cannot open");
   std::vector<std::vector<double>> rows;
@@ -26,6 +28,8 @@ std::vector<std::vector<double>> readTable(const std::string &path, std::size_t 
     if (!ok)
       throw ReadError(path + ":" + std::to_string(reader.lineNumber()) + ": expected " + std::to_string(columns) +
                       " numbers");
+    if (const char *wrong = check ? check(row) : nullptr)
+      throw ReadError(path + ":" + std::to_string(reader.lineNumber()) + ": " + wrong);
     rows.push_back(std::move(row));
   }
   if (!reader.error().empty())
@@ -48,11 +52,19 @@ void writeTum(const std::string &path, const Trajectory &trajectory, const std::
   if (!ok) throw ReadError(path + ": write failed");
 }
 
+// A TUM row's quaternion (qx qy qz qw, columns 4-7) has no rotation when its norm is zero (or
+// too small to square in double precision).
+const char *withoutRotation(const std::vector<double> &r) {
+  const double squared_norm = r[4] * r[4] + r[5] * r[5] + r[6] * r[6] + r[7] * r[7];
+  return squared_norm > 1e-300 && std::isfinite(squared_norm) ? nullptr : "the quaternion (qx qy qz qw) is no rotation";
+}
+
 Trajectory readTum(const std::string &path) {
   Trajectory trajectory;
-  for (const auto &r : readTable(path, 8)) {
+  for (const auto &r : readTable(path, 8, withoutRotation)) {
     const double qx = r[4], qy = r[5], qz = r[6], qw = r[7];
-    const double yaw = std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz));
+    // The yaw of the rotation q / |q|: the form that does not assume |q| = 1.
+    const double yaw = std::atan2(2.0 * (qw * qz + qx * qy), qw * qw + qx * qx - qy * qy - qz * qz);
     trajectory.push_back({r[0], {r[1], r[2], yaw}});
   }
   std::stable_sort(trajectory.begin(), trajectory.end(),
