@@ -43,6 +43,8 @@ py::array_t<double> pointsArray(const std::vector<Eigen::Vector2d> &points);
 py::array_t<double> matrixArray(const Eigen::Matrix3d &m);
 /// A 3 x 3 matrix from a finite array-like of that shape (py::value_error naming `what` otherwise).
 Eigen::Matrix3d matrixOf(const py::handle &array, const char *what);
+/// The same, which must be a rigid motion (rotation block, last row 0 0 1), or ValueError.
+Eigen::Matrix3d rigidMatrixOf(const py::handle &array, const char *what);
 
 /// N x 4 (stamp, x, y, yaw) and back; a wrong shape raises ValueError naming `what`.
 py::array_t<double> trajectoryArray(const io::Trajectory &trajectory);

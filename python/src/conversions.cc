@@ -101,6 +101,22 @@ Eigen::Matrix3d matrixOf(const py::handle &array, const char *what) {
   return m;
 }
 
+Eigen::Matrix3d rigidMatrixOf(const py::handle &array, const char *what) {
+  const Eigen::Matrix3d m = matrixOf(array, what);
+  const Eigen::Matrix2d rotation = m.topLeftCorner<2, 2>();
+  // Tolerances that take a transform computed in single precision (PCL's), not a scaled one.
+  constexpr double kTolerance = 1e-5;
+  const bool rigid =
+      m.row(2).isApprox(Eigen::RowVector3d(0.0, 0.0, 1.0), kTolerance) &&
+      (rotation.transpose() * rotation - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff() <= kTolerance &&
+      rotation.determinant() > 0.0;
+  if (!rigid)
+    throw py::value_error(
+        std::string(what) +
+        " must be a rigid motion: a 3 x 3 homogeneous transform with a rotation block and last row 0 0 1");
+  return m;
+}
+
 py::array_t<double> trajectoryArray(const io::Trajectory &trajectory) {
   py::array_t<double> out({static_cast<py::ssize_t>(trajectory.size()), py::ssize_t(4)});
   auto o = out.mutable_unchecked<2>();

@@ -132,7 +132,7 @@ void bindEvaluation(py::module_ &m) {
       "pose_matrix", [](const py::handle &pose) { return matrixArray(io::toMatrix(poseOf(pose))); }, py::arg("pose"),
       "The 3 x 3 homogeneous transform of a pose (x, y, yaw).");
   m.def(
-      "matrix_pose", [](const py::handle &matrix) { return poseTuple(io::toPose(matrixOf(matrix, "matrix"))); },
+      "matrix_pose", [](const py::handle &matrix) { return poseTuple(io::toPose(rigidMatrixOf(matrix, "matrix"))); },
       py::arg("matrix"), "The pose (x, y, yaw) of a 3 x 3 homogeneous transform.");
 }
 

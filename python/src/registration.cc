@@ -36,7 +36,7 @@ odometry::MatchResult registerPair(const py::handle &source, const py::handle &t
                                    const py::object &guess, const py::object &source_twist,
                                    const py::object &target_twist, const py::kwargs &settings) {
   const odometry::MatcherSettings s = matcherSettings(settings);
-  const Eigen::Matrix3d start = guess.is_none() ? Eigen::Matrix3d::Identity() : matrixOf(guess, "guess");
+  const Eigen::Matrix3d start = guess.is_none() ? Eigen::Matrix3d::Identity() : rigidMatrixOf(guess, "guess");
   std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, s);
   if (!matcher) throw py::value_error("unknown method '" + method + "' (methods: " + methodList() + ")");
   const odometry::Cloud::Ptr source_beams = beamsOf(source, twistOf(source_twist, "source_twist")),

@@ -159,6 +159,17 @@ def test_bad_arguments_raise():
         cr.register(scan, scan, contour_step=-1.0)
     with pytest.raises(ValueError, match="3 x 3"):
         cr.register(scan, scan, guess=np.eye(2))
+    # A guess or a matrix that is no rigid motion (no rotation block, a last row that is not
+    # 0 0 1, a mirror) has no pose: it raises instead of reading as some yaw.
+    for not_rigid in (np.zeros((3, 3)), np.diag([2.0, 2.0, 1.0]), np.diag([1.0, -1.0, 1.0]),
+                      np.array([[1.0, 0, 0], [0, 1, 0], [0.5, 0, 1]])):
+        with pytest.raises(ValueError, match="rigid"):
+            cr.register(scan, scan, guess=not_rigid)
+        with pytest.raises(ValueError, match="rigid"):
+            cr.matrix_pose(not_rigid)
+    # A rotation in single precision, as from a PCL transform, is one.
+    turned = cr.pose_matrix((1.0, 2.0, 0.3)).astype(np.float32)
+    assert cr.matrix_pose(turned) == pytest.approx((1.0, 2.0, 0.3), abs=1e-6)
     with pytest.raises(ValueError, match="N x 2"):
         cr.register(np.zeros((10, 3)), scan)
     with pytest.raises(TypeError):
