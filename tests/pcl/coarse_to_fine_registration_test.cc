@@ -62,6 +62,33 @@ TEST(CoarseToFineRegistration, UndecidedCornersLeaveTheAnswerToTheFineStageFromT
   pcl::console::setVerbosityLevel(verbosity);
 }
 
+// A guess the fine stage cannot start from (not finite, or moving the source beyond what single
+// precision resolves) is not tried: PCL's ICP stops the process on a NaN guess (its kd-tree
+// asserts) and "converges" somewhere from a far one. The coarse stage's verdict stands.
+TEST(CoarseToFineRegistration, AGuessTheFineStageCannotStartFromIsNotTried) {
+  const auto verbosity = pcl::console::getVerbosityLevel();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  simulation::World corridor;
+  corridor.addSegment({-30, -1.2}, {30, -1.2});
+  corridor.addSegment({-30, 1.3}, {30, 1.3});
+  const auto target = odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0, 0, 0), 0.01, 1));
+  const auto source = odometry::beamCloud(test::scanFrom(corridor, test::pose2d(0.1, 0.05, 1), 0.01, 2));
+  for (const float far : {NAN, INFINITY, 1e30f, 2e4f}) {
+    SCOPED_TRACE(far);
+    CoarseToFine registration;
+    registration.setInputTarget(target);
+    registration.setInputSource(source);
+    Eigen::Matrix4f guess = Eigen::Matrix4f::Identity();
+    guess(0, 3) = far;
+    Cloud aligned;
+    registration.align(aligned, guess);
+    EXPECT_TRUE(isUndecided(registration.getCoarseStage()->getResult().status));
+    EXPECT_FALSE(registration.fineFromGuess());
+    EXPECT_FALSE(registration.hasConverged());
+  }
+  pcl::console::setVerbosityLevel(verbosity);
+}
+
 TEST(CoarseToFineRegistration, AFineCorrectionBeyondTheLimitKeepsTheCoarseAnswer) {
   const simulation::World world = simulation::makeFurnishedRoom();
   CoarseToFine registration;

@@ -175,15 +175,6 @@ MatchResult ScanMatcher::match(const Cloud::Ptr &target, const Cloud::Ptr &sourc
   return align(guess, start);
 }
 
-namespace {
-
-// m: PCL's methods register in single precision, which resolves points 10 km from the origin to
-// a millimetre, and no finer; a guess beyond it, far outside any scan's range, leaves them
-// nothing to match (and from 1e38 m their search meets infinite coordinates).
-constexpr double kFarthestGuess = 1e4;
-
-}  // namespace
-
 MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady_clock::time_point start) {
   MatchResult result;
   Cloud aligned;
@@ -193,7 +184,7 @@ MatchResult ScanMatcher::align(const Eigen::Matrix3d &guess, std::chrono::steady
     result.status = "empty_scan";
     return result;
   }
-  if (!contour_ && !(guess.allFinite() && guess.block<2, 1>(0, 2).norm() <= kFarthestGuess)) {
+  if (!contour_ && !isLocalGuess(guess)) {
     result.transform = guess;
     result.reason =
         "the guess moves the source more than 10 km, beyond what " + name_ + " resolves in single precision";

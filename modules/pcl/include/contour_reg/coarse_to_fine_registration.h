@@ -13,6 +13,20 @@
 
 namespace contour_reg {
 
+/// m: PCL's local methods (ICP, NDT, GICP) register in single precision, which resolves points
+/// 10 km from the origin to a millimetre and no finer; a guess that moves the source further
+/// leaves them nothing to match, and from 1e38 m (or a NaN) their kd-tree search meets
+/// coordinates that are not finite, which it refuses with an assertion.
+constexpr double kFarthestLocalGuess = 1e4;
+
+/// True when a PCL local method can start from `guess` (any matrix whose top-right column
+/// holds the translation: 3 x 3 planar or 4 x 4): finite, moving at most kFarthestLocalGuess.
+template <typename Matrix>
+bool isLocalGuess(const Matrix &guess) {
+  const auto translation = guess.template topRightCorner<2, 1>();
+  return guess.allFinite() && double(translation.norm()) <= kFarthestLocalGuess;
+}
+
 /// Coarse-to-fine registration as one pcl::Registration.
 ///
 /// align(output, guess) runs the coarse stage, a ContourRegistration, from `guess`; when it
@@ -24,7 +38,8 @@ namespace contour_reg {
 /// (isUndecided(): too few special points or inliers, low overlap, unconstrained, ambiguous, contradicted)
 /// and setFineFromGuess(true) (the default), the fine stage runs from the guess alone and its
 /// own convergence is reported (fineFromGuess() tells); a local answer, right only when the
-/// guess was close. Invalid parameters end there: not converged, final transformation = guess.
+/// guess was close. A guess the fine stage cannot start from (isLocalGuess() false) is not
+/// tried: the coarse stage's verdict stands. Invalid parameters end there: not converged, final transformation = guess.
 ///
 /// Inputs follow ContourRegistration's contract: every setInputSource()/setInputTarget() is
 /// new data, align() reads the source it holds every time, and swapSourceAndTarget() is the

@@ -113,7 +113,7 @@ void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::computeTransfor
   const bool fine_possible = finite_source_ && finite_target_ && !finite_source_->empty() && !finite_target_->empty();
 
   if (!coarse_->hasConverged()) {
-    if (fine_from_guess_enabled_ && isUndecided(coarse_->getResult().status) && fine_possible) {
+    if (fine_from_guess_enabled_ && isUndecided(coarse_->getResult().status) && fine_possible && isLocalGuess(guess)) {
       fine_->setInputSource(finite_source_);
       fine_->setInputTarget(finite_target_);
       fine_->align(scratch, guess);
