@@ -181,6 +181,18 @@ TEST(ContourCornerEstimation, EmptyInvalidAndCornerlessInputGiveNoCorner) {
   estimation.setInputCloud(toCloud(test::scanFrom(test::RoomWithBoxes().world, test::pose2d(0, 0, 0))));
   estimation.compute(corners);
   EXPECT_TRUE(corners.empty());
+  // Indices that name no point of the cloud (a negative one, one past its end).
+  estimation.setFragmentHalfLength(ContourParams().special_points.fragment_half_length);
+  const auto cloud = toCloud(test::scanFrom(test::RoomWithBoxes().world, test::pose2d(0, 0, 0)));
+  estimation.setInputCloud(cloud);
+  for (const int outside : {-1, static_cast<int>(cloud->size()), 1 << 30}) {
+    auto indices = pcl::make_shared<pcl::Indices>();
+    for (int n = 0; n < 100; ++n) indices->push_back(n);
+    indices->push_back(outside);
+    estimation.setIndices(indices);
+    estimation.compute(corners);
+    EXPECT_TRUE(corners.empty()) << outside;
+  }
   pcl::console::setVerbosityLevel(verbosity);
 }
 

@@ -18,6 +18,15 @@ bool ContourCornerEstimation<PointInT, PointOutT>::initCompute() {
     PCL_ERROR("[contour_reg::%s::compute] Init failed: no input cloud.\n", getClassName().c_str());
     return false;
   }
+  // PCL's initCompute checks how many indices there are, not what they name.
+  const auto outside = std::find_if(indices_->begin(), indices_->end(), [&](pcl::index_t index) {
+    return index < 0 || static_cast<std::size_t>(index) >= input_->size();
+  });
+  if (outside != indices_->end()) {
+    PCL_ERROR("[contour_reg::%s::compute] Index %d names no point of the %zu-point cloud.\n", getClassName().c_str(),
+              static_cast<int>(*outside), input_->size());
+    return false;
+  }
   std::string why;
   if (!params_.validate(&why)) {
     PCL_ERROR("[contour_reg::%s::compute] Invalid parameters: %s.\n", getClassName().c_str(), why.c_str());
