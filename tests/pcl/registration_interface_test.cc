@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numeric>
 
 #include <gtest/gtest.h>
 #include <pcl/console/print.h>
@@ -191,6 +192,35 @@ TYPED_TEST(RegistrationInterface, NoInputFailsWithoutCrashing) {
   registration->align(aligned);
   EXPECT_TRUE(registration->hasConverged());
   pcl::console::setVerbosityLevel(verbosity);
+}
+
+// pcl::Registration::setIndices() names the source points to register, as for PCL's ICP: a
+// cloud of two scans one after the other, taken 0.5 m apart, registers as the scan its indices name.
+TYPED_TEST(RegistrationInterface, SourceIndicesNameThePointsRegistered) {
+  const Registration::Ptr registration = TypeParam::make();
+  const auto first = scan(runPose(2), 3), second = scan(runPose(4), 4);
+  auto both = pcl::make_shared<Cloud>(*first);
+  *both += *second;
+  auto first_half = pcl::make_shared<pcl::Indices>(first->size()),
+       second_half = pcl::make_shared<pcl::Indices>(second->size());
+  std::iota(first_half->begin(), first_half->end(), 0);
+  std::iota(second_half->begin(), second_half->end(), static_cast<int>(first->size()));
+  registration->setInputTarget(scan(runPose(0), 1));
+  registration->setInputSource(both);
+  Cloud aligned;
+  for (const auto &[indices, pose] : {std::pair{first_half, runPose(2)}, std::pair{second_half, runPose(4)}}) {
+    registration->setIndices(indices);
+    registration->align(aligned);
+    ASSERT_TRUE(registration->hasConverged());
+    EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(0).inverse() * pose, 0.02, 0.5);
+  }
+  // Indices that name no point of the source: not converged.
+  registration->setIndices(pcl::make_shared<pcl::Indices>(pcl::Indices{0, 1, static_cast<int>(both->size())}));
+  const auto verbosity = pcl::console::getVerbosityLevel();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  registration->align(aligned);
+  pcl::console::setVerbosityLevel(verbosity);
+  EXPECT_FALSE(registration->hasConverged());
 }
 
 // A beam without a return is a NaN point, as the classes take their scans; PCL's

@@ -30,10 +30,17 @@ bool isInBearingOrder(const ComplexSequence &points);
 /// before the sort), the positions are moved along with their points.
 void sortByBearing(ComplexSequence &points, std::vector<int> *order = nullptr);
 
-/// The polar code of a cloud (or of the points named by `indices`, in that order), into
-/// `code`, reusing its buffer. With `order`, order[n] is the position in the cloud (or in
-/// `indices`) of code point n. With a moving `sweep`, the points, taken in cloud order, are
-/// deskewed (deskew.h) before any sort by bearing.
+/// True when every index names a point of `cloud` (none negative or past its end).
+template <typename PointT>
+bool indicesWithin(const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices) {
+  return std::all_of(indices.begin(), indices.end(),
+                     [&](pcl::index_t index) { return index >= 0 && static_cast<std::size_t>(index) < cloud.size(); });
+}
+
+/// The polar code of a cloud (or of the points named by `indices`, in that order; they must
+/// lie within it), into `code`, reusing its buffer. With `order`, order[n] is the position in
+/// the cloud (or in `indices`) of code point n. With a moving `sweep`, the points, each at the
+/// time of its position in the cloud, are deskewed (deskew.h) before any sort by bearing.
 template <typename PointT>
 void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &code,
                         const pcl::Indices *indices = nullptr, std::vector<int> *order = nullptr,
@@ -41,13 +48,19 @@ void polarCodeFromCloud(const pcl::PointCloud<PointT> &cloud, ComplexSequence &c
   const std::size_t count = indices ? indices->size() : cloud.size();
   code.clear();
   code.reserve(count);
-  bool has_invalid = false;
-  for (std::size_t k = 0; k < count; ++k) {
-    const PointT &p = cloud[indices ? static_cast<std::size_t>((*indices)[k]) : k];
-    code.emplace_back(p.x, p.y);
-    has_invalid = has_invalid || !isFinite(code.back());
+  if (indices && sweep.moving()) {
+    // The whole sweep deskewed, then the points the indices name.
+    ComplexSequence all;
+    polarCodeFromCloud(cloud, all, nullptr, nullptr, sweep);
+    for (const pcl::index_t index : *indices) code.push_back(all[static_cast<std::size_t>(index)]);
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      const PointT &p = cloud[indices ? static_cast<std::size_t>((*indices)[k]) : k];
+      code.emplace_back(p.x, p.y);
+    }
+    deskewPolarCode(code, sweep);
   }
-  deskewPolarCode(code, sweep);
+  const bool has_invalid = std::any_of(code.begin(), code.end(), [](const Complex &c) { return !isFinite(c); });
   if (order) {
     order->resize(count);
     std::iota(order->begin(), order->end(), 0);

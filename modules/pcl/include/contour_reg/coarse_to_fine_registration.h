@@ -43,7 +43,8 @@ bool isLocalGuess(const Matrix &guess) {
 ///
 /// Inputs follow ContourRegistration's contract: every setInputSource()/setInputTarget() is
 /// new data, align() reads the source it holds every time, and swapSourceAndTarget() is the
-/// odometry step that reuses what was extracted from the last source. The stages are
+/// odometry step that reuses what was extracted from the last source. setIndices() names the
+/// source points both stages register. The stages are
 /// configured through getCoarseStage() and getFineStage(); this class's own PCL setters
 /// (setMaximumIterations(), setMaxCorrespondenceDistance(), ...) have no effect.
 ///
@@ -108,6 +109,7 @@ class CoarseToFineRegistration : public pcl::Registration<PointSource, PointTarg
   typename PointCloudSource::Ptr source_buffer_;  // NaN-free copies of clouds that are not dense
   typename PointCloudTarget::Ptr target_buffer_;
   bool finite_target_ready_ = false;
+  bool finite_source_indexed_ = false;  // finite_source_ holds the points setIndices() named
   double max_fine_translation_ = 0.10, max_fine_rotation_ = 0.035;
   bool fine_rejected_ = false;
   bool fine_from_guess_enabled_ = true, fine_from_guess_ = false;

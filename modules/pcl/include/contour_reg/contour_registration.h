@@ -27,7 +27,9 @@ namespace contour_reg {
 /// for later align() calls until the target is set again (as PCL keeps the target's kd-tree).
 /// swapSourceAndTarget() is the one path that reuses the source's special points: odometry
 /// (each scan against the previous one) swaps, sets the new scan as source, and aligns, so
-/// each scan is read once.
+/// each scan is read once. setIndices() names the source points to register, in beam order,
+/// as ContourCornerEstimation takes them (the target is the whole cloud, as in pcl::Registration);
+/// an index that names no point leaves align() not converged (kInvalidParameters).
 ///
 /// PCL's settings: setRANSACIterations() is the RANSAC iterations k,
 /// setRANSACOutlierRejectionThreshold() the RANSAC inlier threshold t on corner vertices (m),
@@ -152,6 +154,7 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   // target's are used while true; the source's only right after swapSourceAndTarget().
   bool source_extracted_ = false, target_extracted_ = false;
   bool reuse_source_ = false;
+  bool source_indexed_ = false;  // the source's features are of the points setIndices() named
   RegistrationResult result_;
 };
 

@@ -13,14 +13,24 @@ namespace contour_reg {
 
 namespace detail {
 
-// The cloud without its NaN points: the cloud itself when it is dense, else a copy into `buffer`.
+// The cloud without its NaN points: the cloud itself when it is dense, else a copy into
+// `buffer`. With `indices`, the finite points they name, copied (none when one names no point).
 template <typename PointT>
 typename pcl::PointCloud<PointT>::ConstPtr finitePoints(const typename pcl::PointCloud<PointT>::ConstPtr &cloud,
-                                                        typename pcl::PointCloud<PointT>::Ptr &buffer) {
-  if (!cloud || cloud->is_dense) return cloud;
+                                                        typename pcl::PointCloud<PointT>::Ptr &buffer,
+                                                        const pcl::Indices *indices = nullptr) {
+  if (!cloud || (cloud->is_dense && !indices)) return cloud;
   if (!buffer) buffer = pcl::make_shared<pcl::PointCloud<PointT>>();
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(*cloud, *buffer, kept);
+  if (!indices) {
+    pcl::Indices kept;
+    pcl::removeNaNFromPointCloud(*cloud, *buffer, kept);
+    return buffer;
+  }
+  buffer->clear();
+  if (indicesWithin(*cloud, *indices))
+    for (const pcl::index_t k : *indices)
+      if (pcl::isXYZFinite((*cloud)[k])) buffer->push_back((*cloud)[k]);
+  buffer->is_dense = true;
   return buffer;
 }
 
@@ -73,7 +83,9 @@ void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::swapSourceAndTa
   // made at the next align() anyway.
   std::swap(finite_source_, finite_target_);
   std::swap(source_buffer_, target_buffer_);
-  finite_target_ready_ = static_cast<bool>(finite_target_);
+  // Those of the points some indices named are not the whole target's.
+  finite_target_ready_ = static_cast<bool>(finite_target_) && !finite_source_indexed_;
+  finite_source_indexed_ = false;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
@@ -102,10 +114,14 @@ void CoarseToFineRegistration<PointSource, PointTarget, Scalar>::computeTransfor
   fine_rejected_ = false;
   fine_from_guess_ = false;
   PointCloudSource scratch;
+  // The source points setIndices() names (none set: the whole cloud), for both stages.
+  const pcl::Indices *indices = this->fake_indices_ ? nullptr : this->indices_.get();
+  coarse_->setIndices(indices ? this->indices_ : pcl::IndicesPtr());
   coarse_->align(scratch, guess);
 
   // The fine stage reads the source every time and the target once per setInputTarget().
-  finite_source_ = detail::finitePoints<PointSource>(input_, source_buffer_);
+  finite_source_ = detail::finitePoints<PointSource>(input_, source_buffer_, indices);
+  finite_source_indexed_ = indices != nullptr;
   if (!finite_target_ready_) {
     finite_target_ = detail::finitePoints<PointTarget>(target_, target_buffer_);
     finite_target_ready_ = true;

@@ -19,12 +19,9 @@ bool ContourCornerEstimation<PointInT, PointOutT>::initCompute() {
     return false;
   }
   // PCL's initCompute checks how many indices there are, not what they name.
-  const auto outside = std::find_if(indices_->begin(), indices_->end(), [&](pcl::index_t index) {
-    return index < 0 || static_cast<std::size_t>(index) >= input_->size();
-  });
-  if (outside != indices_->end()) {
-    PCL_ERROR("[contour_reg::%s::compute] Index %d names no point of the %zu-point cloud.\n", getClassName().c_str(),
-              static_cast<int>(*outside), input_->size());
+  if (!indicesWithin(*input_, *indices_)) {
+    PCL_ERROR("[contour_reg::%s::compute] An index names no point of the %zu-point cloud.\n", getClassName().c_str(),
+              input_->size());
     return false;
   }
   std::string why;

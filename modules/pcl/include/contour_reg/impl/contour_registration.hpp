@@ -14,11 +14,12 @@ namespace contour_reg {
 
 namespace detail {
 
+// Whether the cloud (or the points `indices` name) has a point with finite x and y.
 template <typename PointT>
-bool hasFinitePoint(const pcl::PointCloud<PointT> &cloud) {
-  for (const PointT &p : cloud)
-    if (std::isfinite(p.x) && std::isfinite(p.y)) return true;
-  return false;
+bool hasFinitePoint(const pcl::PointCloud<PointT> &cloud, const pcl::Indices *indices = nullptr) {
+  const auto finite = [](const PointT &p) { return std::isfinite(p.x) && std::isfinite(p.y); };
+  if (!indices) return std::any_of(cloud.begin(), cloud.end(), finite);
+  return std::any_of(indices->begin(), indices->end(), [&](pcl::index_t k) { return finite(cloud[k]); });
 }
 
 }  // namespace detail
@@ -104,6 +105,9 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::swapSourceAndTarget(
   std::swap(source_features_, target_features_);
   std::swap(source_sweep_, target_sweep_);
   std::swap(source_extracted_, target_extracted_);
+  // The target is the whole cloud: features of the points some indices named are not its.
+  if (source_indexed_) target_extracted_ = false;
+  source_indexed_ = false;
   reuse_source_ = source_extracted_;
 }
 
@@ -159,18 +163,30 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     result_.reason = why;
     return;
   }
-  if (!detail::hasFinitePoint(*input_) || !detail::hasFinitePoint(*target_)) {
+  // The source points setIndices() names, as PCL's ICP takes them (none set: the whole cloud).
+  const pcl::Indices *indices = this->fake_indices_ ? nullptr : this->indices_.get();
+  if (indices && !indicesWithin(*input_, *indices)) {
     result_ = RegistrationResult{};
     result_.reason =
-        !detail::hasFinitePoint(*input_) ? "source cloud has no valid point" : "target cloud has no valid point";
+        "an index of setIndices() names no point of the " + std::to_string(input_->size()) + "-point source cloud";
+    PCL_ERROR("[contour_reg::%s::computeTransformation] %s.\n", getClassName().c_str(), result_.reason.c_str());
+    result_.status = RegistrationStatus::kInvalidParameters;
+    return;
+  }
+  if (!detail::hasFinitePoint(*input_, indices) || !detail::hasFinitePoint(*target_)) {
+    result_ = RegistrationResult{};
+    result_.reason = !detail::hasFinitePoint(*input_, indices) ? "source cloud has no valid point"
+                                                               : "target cloud has no valid point";
     PCL_ERROR("[contour_reg::%s::computeTransformation] %s.\n", getClassName().c_str(), result_.reason.c_str());
     result_.status = RegistrationStatus::kTooFewSpecialPoints;
     return;
   }
-  if (!reuse_source_)
-    extractContourFeatures(*input_, contour_params_, source_features_, nullptr, nullptr, source_sweep_);
+  // Features swapped in from the target are of the whole cloud: with indices they are not the source's.
+  if (!reuse_source_ || indices)
+    extractContourFeatures(*input_, contour_params_, source_features_, indices, nullptr, source_sweep_);
   reuse_source_ = false;  // the next align() reads the source again
   source_extracted_ = true;
+  source_indexed_ = indices != nullptr;
   if (!target_extracted_) {
     extractContourFeatures(*target_, contour_params_, target_features_, nullptr, nullptr, target_sweep_);
     target_extracted_ = true;
