@@ -39,14 +39,15 @@ bool isLocalGuess(const Matrix &guess) {
 /// and setFineFromGuess(true) (the default), the fine stage runs from the guess alone and its
 /// own convergence is reported (fineFromGuess() tells); a local answer, right only when the
 /// guess was close. A guess the fine stage cannot start from (isLocalGuess() false) is not
-/// tried: the coarse stage's verdict stands. Invalid parameters end there: not converged, final transformation = guess.
+/// tried: the coarse stage's verdict stands. Invalid parameters end there: not converged,
+/// final transformation = guess.
 ///
 /// Inputs follow ContourRegistration's contract: every setInputSource()/setInputTarget() is
 /// new data, align() reads the source it holds every time, and swapSourceAndTarget() is the
 /// odometry step that reuses what was extracted from the last source. setIndices() names the
-/// source points both stages register. The stages are
-/// configured through getCoarseStage() and getFineStage(); this class's own PCL setters
-/// (setMaximumIterations(), setMaxCorrespondenceDistance(), ...) have no effect.
+/// source points both stages register. The stages are configured through getCoarseStage()
+/// and getFineStage(); this class's own PCL setters (setMaximumIterations(),
+/// setMaxCorrespondenceDistance(), ...) have no effect.
 ///
 /// Defaults: ContourRegistration, then ICP with TransformationEstimation2D, 0.3 m
 /// correspondence distance, 30 iterations, 1e-8 transformation epsilon.
