@@ -21,19 +21,34 @@ void setRanges(LaserScan &scan, const py::handle &ranges) {
   scan.ranges.assign(r.data(), r.data() + r.size());
 }
 
+// The beam geometry, checked the same way by the constructor and by the attributes' setters.
+void setAngleMin(LaserScan &scan, double angle_min) {
+  if (!std::isfinite(angle_min)) throw py::value_error("angle_min must be finite (rad)");
+  scan.angle_min = angle_min;
+}
+
+void setAngleIncrement(LaserScan &scan, double angle_increment) {
+  if (!std::isfinite(angle_increment) || angle_increment == 0.0)
+    throw py::value_error("angle_increment must be finite and not 0 (rad)");
+  scan.angle_increment = angle_increment;
+}
+
+void setTimeIncrement(LaserScan &scan, double time_increment) {
+  if (!(std::isfinite(time_increment) && time_increment >= 0.0))
+    throw py::value_error("time_increment must be finite and >= 0 s");
+  scan.time_increment = time_increment;
+}
+
 LaserScan makeScan(const py::handle &ranges, double angle_min, double angle_increment, double stamp, double range_min,
                    double range_max, double time_increment) {
-  if (!std::isfinite(angle_min) || !std::isfinite(angle_increment) || angle_increment == 0.0)
-    throw py::value_error("angle_min must be finite and angle_increment finite and not 0 (rad)");
-  if (!std::isfinite(time_increment) || time_increment < 0.0) throw py::value_error("time_increment must be >= 0 s");
   LaserScan scan;
+  setAngleMin(scan, angle_min);
+  setAngleIncrement(scan, angle_increment);
+  setTimeIncrement(scan, time_increment);
   setRanges(scan, ranges);
-  scan.angle_min = angle_min;
-  scan.angle_increment = angle_increment;
   scan.stamp = stamp;
   scan.range_min = range_min;
   scan.range_max = range_max;
-  scan.time_increment = time_increment;
   return scan;
 }
 
@@ -122,11 +137,16 @@ void bindScans(py::module_ &m) {
                   py::arg("range_min") = 0.0, py::arg("range_max") = 0.0, py::arg("time_increment") = 0.0,
                   "A scan from ranges (m) and the bearing of each beam (rad, evenly spaced; ValueError otherwise).")
       .def_readwrite("stamp", &LaserScan::stamp, "s, when beam 0 was taken")
-      .def_readwrite("angle_min", &LaserScan::angle_min, "rad, bearing of beam 0")
-      .def_readwrite("angle_increment", &LaserScan::angle_increment, "rad between consecutive beams")
+      .def_property(
+          "angle_min", [](const LaserScan &s) { return s.angle_min; }, &setAngleMin, "rad, bearing of beam 0")
+      .def_property(
+          "angle_increment", [](const LaserScan &s) { return s.angle_increment; }, &setAngleIncrement,
+          "rad between consecutive beams (finite, not 0)")
       .def_readwrite("range_min", &LaserScan::range_min, "m, readings below are invalid")
       .def_readwrite("range_max", &LaserScan::range_max, "m, readings at or above are invalid (0: no limit)")
-      .def_readwrite("time_increment", &LaserScan::time_increment, "s between consecutive beams (0: none)")
+      .def_property(
+          "time_increment", [](const LaserScan &s) { return s.time_increment; }, &setTimeIncrement,
+          "s between consecutive beams (0: none)")
       .def_property("ranges", &rangesArray, &setRanges, "m, one per beam (a copy; assign an array to change them)")
       .def(
           "angles",

@@ -185,6 +185,18 @@ def test_from_angles_builds_the_scan_geometry():
     assert len(scan) == 3 and scan.stamp == 4.0
 
 
+def test_the_scan_geometry_set_afterwards_is_checked_as_the_constructor_checks_it():
+    scan = square_room_scan()
+    for name, value in (("angle_min", float("nan")), ("angle_min", float("inf")), ("angle_increment", 0.0),
+                        ("angle_increment", float("nan")), ("time_increment", -1.0),
+                        ("time_increment", float("nan"))):
+        with pytest.raises(ValueError, match=name):
+            setattr(scan, name, value)
+    scan.angle_increment = -scan.angle_increment  # beams taken clockwise: a geometry
+    scan.time_increment = 1e-5
+    assert scan.time_increment == 1e-5
+
+
 def test_methods_lists_every_method_and_each_registers():
     names = cr.methods()
     assert names == ["contour", "icp", "icp-pl", "ndt2d", "ndt", "gicp", "contour+icp"]
