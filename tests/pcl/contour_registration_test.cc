@@ -1,5 +1,6 @@
 #include "contour_reg/contour_registration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -75,6 +76,43 @@ TEST(ContourRegistration, AlignsLikeTheCore) {
   EXPECT_NEAR(t(1, 3), core.transform(1, 2), 1e-5);
   EXPECT_NEAR(std::atan2(t(1, 0), t(0, 0)), yawOf(core.transform), 1e-5);
   EXPECT_EQ(registration.getResult().inliers, core.inliers);
+}
+
+// PCL's visualisation callback (pcl::RegistrationVisualizer's hook) is called after align()
+// with the moved source and the corner pairs that decided the motion, as ICP calls it with its
+// correspondences: each source index, moved by the answer, lies by its target index. The scan
+// is shuffled (no NaN), so the indices are cloud positions, not bearing order.
+TEST(ContourRegistration, TheVisualisationCallbackGetsTheCornerPairs) {
+  const ScanPair pair;
+  auto shuffled = pcl::make_shared<Cloud>(*finite(pair.source));
+  std::mt19937 rng(3);
+  std::shuffle(shuffled->begin(), shuffled->end(), rng);
+  ContourRegistration<pcl::PointXYZ, pcl::PointXYZ> registration;
+  registration.setInputSource(shuffled);
+  registration.setInputTarget(pair.target);
+  int calls = 0;
+  pcl::Indices sources, targets;
+  Cloud moved;
+  std::function<void(const Cloud &, const pcl::Indices &, const Cloud &, const pcl::Indices &)> show =
+      [&](const Cloud &source, const pcl::Indices &source_indices, const Cloud &, const pcl::Indices &target_indices) {
+        ++calls;
+        moved = source;
+        sources = source_indices;
+        targets = target_indices;
+      };
+  ASSERT_TRUE(registration.registerVisualizationCallback(show));
+  calls = 0;  // PCL calls it once as it is registered
+  Cloud aligned;
+  registration.align(aligned);
+  ASSERT_TRUE(registration.hasConverged()) << registration.getFailureReason();
+  EXPECT_EQ(calls, 1);
+  ASSERT_EQ(sources.size(), registration.getResult().inliers.size());
+  ASSERT_EQ(targets.size(), sources.size());
+  ASSERT_GE(sources.size(), 3u);
+  for (std::size_t k = 0; k < sources.size(); ++k) {
+    const pcl::PointXYZ &s = moved[sources[k]], &t = (*pair.target)[targets[k]];
+    EXPECT_LT(std::hypot(s.x - t.x, s.y - t.y), 0.1) << k;
+  }
 }
 
 TEST(ContourRegistration, StandsWhereIcpAndNdtStand) {

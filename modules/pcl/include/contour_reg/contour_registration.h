@@ -42,7 +42,10 @@ namespace contour_reg {
 /// setEuclideanFitnessEpsilon() and PCL's convergence criteria have no effect (RANSAC and the
 /// judgement of the result decide convergence). getFinalTransformation() is the answer,
 /// getFitnessScore() PCL's score of it over the finite source points (a NaN beam has no
-/// nearest target point: lazy_kdtree.h); nr_iterations_ counts the RANSAC iterations.
+/// nearest target point: lazy_kdtree.h); nr_iterations_ counts the RANSAC iterations. A
+/// callback of registerVisualizationCallback() (pcl::RegistrationVisualizer's) is called once
+/// per align() with the moved source and the corner pairs that decided a converged motion, the
+/// cloud points at their vertices (none where the contours decided it, or nothing converged).
 ///
 /// The initial guess of align(output, guess): the corner match needs none (the fragment
 /// distance is rotation invariant). The guess is refined on the contours where the corners
@@ -146,6 +149,9 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   // A source or target without the feature bookkeeping of the public setters.
   void holdSource(const PointCloudSourceConstPtr &cloud);
   void holdTarget(const PointCloudTargetConstPtr &cloud);
+  // PCL's visualisation callback, once per align(): the moved source and the corner pairs that
+  // decided a converged motion (none for one the contours decided, or none converged).
+  void showCornerPairs(const PointCloudSource &output, const pcl::Indices *indices) const;
 
   Sweep source_sweep_, target_sweep_;
   ContourFeatures source_features_, target_features_;
@@ -155,6 +161,9 @@ class ContourRegistration : public pcl::Registration<PointSource, PointTarget, S
   bool source_extracted_ = false, target_extracted_ = false;
   bool reuse_source_ = false;
   bool source_indexed_ = false;  // the source's features are of the points setIndices() named
+  // The position in the cloud (or in the indices) of each point of the polar code the
+  // features were extracted from, as polarCodeFromCloud() sorts them: for showCornerPairs().
+  std::vector<int> source_order_, target_order_;
   RegistrationResult result_;
 };
 

@@ -103,6 +103,7 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::swapSourceAndTarget(
   holdSource(target_);
   holdTarget(source);
   std::swap(source_features_, target_features_);
+  std::swap(source_order_, target_order_);
   std::swap(source_sweep_, target_sweep_);
   std::swap(source_extracted_, target_extracted_);
   // The target is the whole cloud: features of the points some indices named are not its.
@@ -183,12 +184,12 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
   }
   // Features swapped in from the target are of the whole cloud: with indices they are not the source's.
   if (!reuse_source_ || indices)
-    extractContourFeatures(*input_, contour_params_, source_features_, indices, nullptr, source_sweep_);
+    extractContourFeatures(*input_, contour_params_, source_features_, indices, &source_order_, source_sweep_);
   reuse_source_ = false;  // the next align() reads the source again
   source_extracted_ = true;
   source_indexed_ = indices != nullptr;
   if (!target_extracted_) {
-    extractContourFeatures(*target_, contour_params_, target_features_, nullptr, nullptr, target_sweep_);
+    extractContourFeatures(*target_, contour_params_, target_features_, nullptr, &target_order_, target_sweep_);
     target_extracted_ = true;
   }
 
@@ -206,6 +207,7 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     PCL_DEBUG("[contour_reg::%s::computeTransformation] Not converged: %s.\n", getClassName().c_str(),
               result_.reason.c_str());
     pcl::transformPointCloud(output, output, final_transformation_);
+    showCornerPairs(output, indices);
     return;
   }
   Matrix4 transform = Matrix4::Identity();
@@ -213,6 +215,31 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
   transform.template block<2, 1>(0, 3) = result_.transform.topRightCorner<2, 1>().template cast<Scalar>();
   final_transformation_ = transformation_ = transform;
   pcl::transformPointCloud(output, output, final_transformation_);
+  showCornerPairs(output, indices);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void ContourRegistration<PointSource, PointTarget, Scalar>::showCornerPairs(const PointCloudSource &output,
+                                                                            const pcl::Indices *indices) const {
+  if (!this->update_visualizer_) return;
+  // The cloud point at a special point's vertex: its beam in the polar code, that beam's
+  // position in the cloud (or in the indices) before any sort by bearing.
+  const auto pointOf = [](const ContourFeatures &features, const std::vector<int> &order, int special) {
+    const int beam = nearestBeam(features, features.special_points[static_cast<std::size_t>(special)]);
+    return beam >= 0 && static_cast<std::size_t>(beam) < order.size() ? order[static_cast<std::size_t>(beam)] : -1;
+  };
+  pcl::Indices sources, targets;
+  if (converged_ && !result_.from_local_fallback) {
+    for (const int inlier : result_.inliers) {
+      const Correspondence &pair = result_.candidates[static_cast<std::size_t>(inlier)];
+      const int source = pointOf(source_features_, source_order_, pair.source);
+      const int target = pointOf(target_features_, target_order_, pair.target);
+      if (source < 0 || target < 0) continue;
+      sources.push_back(indices ? (*indices)[static_cast<std::size_t>(source)] : source);
+      targets.push_back(target);
+    }
+  }
+  this->update_visualizer_(output, sources, *target_, targets);
 }
 
 }  // namespace contour_reg
