@@ -195,7 +195,9 @@ TYPED_TEST(RegistrationInterface, NoInputFailsWithoutCrashing) {
 }
 
 // pcl::Registration::setIndices() names the source points to register, as for PCL's ICP: a
-// cloud of two scans one after the other, taken 0.5 m apart, registers as the scan its indices name.
+// cloud of two scans one after the other, taken 0.5 m apart, registers as the scan its indices
+// name. (Indices outside the cloud are the caller's error: PCL's align() copies the points they
+// name into the output before any registration runs.)
 TYPED_TEST(RegistrationInterface, SourceIndicesNameThePointsRegistered) {
   const Registration::Ptr registration = TypeParam::make();
   const auto first = scan(runPose(2), 3), second = scan(runPose(4), 4);
@@ -214,13 +216,6 @@ TYPED_TEST(RegistrationInterface, SourceIndicesNameThePointsRegistered) {
     ASSERT_TRUE(registration->hasConverged());
     EXPECT_MOTION_NEAR(toIsometry(registration->getFinalTransformation()), runPose(0).inverse() * pose, 0.02, 0.5);
   }
-  // Indices that name no point of the source: not converged.
-  registration->setIndices(pcl::make_shared<pcl::Indices>(pcl::Indices{0, 1, static_cast<int>(both->size())}));
-  const auto verbosity = pcl::console::getVerbosityLevel();
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  registration->align(aligned);
-  pcl::console::setVerbosityLevel(verbosity);
-  EXPECT_FALSE(registration->hasConverged());
 }
 
 // A beam without a return is a NaN point, as the classes take their scans; PCL's

@@ -28,8 +28,9 @@ namespace contour_reg {
 /// swapSourceAndTarget() is the one path that reuses the source's special points: odometry
 /// (each scan against the previous one) swaps, sets the new scan as source, and aligns, so
 /// each scan is read once. setIndices() names the source points to register, in beam order,
-/// as ContourCornerEstimation takes them (the target is the whole cloud, as in pcl::Registration);
-/// an index that names no point leaves align() not converged (kInvalidParameters).
+/// as ContourCornerEstimation takes them (the target is the whole cloud, as in pcl::Registration).
+/// They must name points of the source: PCL's align() copies those points to its output before
+/// the registration runs (which then reports an index outside as kInvalidParameters).
 ///
 /// PCL's settings: setRANSACIterations() is the RANSAC iterations k,
 /// setRANSACOutlierRejectionThreshold() the RANSAC inlier threshold t on corner vertices (m),
