@@ -183,13 +183,20 @@ void ContourRegistration<PointSource, PointTarget, Scalar>::computeTransformatio
     return;
   }
   // Features swapped in from the target are of the whole cloud: with indices they are not the source's.
-  if (!reuse_source_ || indices)
-    extractContourFeatures(*input_, contour_params_, source_features_, indices, &source_order_, source_sweep_);
+  // The bearing order of the polar code is kept only for a visualisation callback (showCornerPairs).
+  const bool keep_order = static_cast<bool>(this->update_visualizer_);
+  if (!reuse_source_ || indices) {
+    source_order_.clear();
+    extractContourFeatures(*input_, contour_params_, source_features_, indices, keep_order ? &source_order_ : nullptr,
+                           source_sweep_);
+  }
   reuse_source_ = false;  // the next align() reads the source again
   source_extracted_ = true;
   source_indexed_ = indices != nullptr;
   if (!target_extracted_) {
-    extractContourFeatures(*target_, contour_params_, target_features_, nullptr, &target_order_, target_sweep_);
+    target_order_.clear();
+    extractContourFeatures(*target_, contour_params_, target_features_, nullptr, keep_order ? &target_order_ : nullptr,
+                           target_sweep_);
     target_extracted_ = true;
   }
 
