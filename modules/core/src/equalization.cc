@@ -66,9 +66,14 @@ Complex pointAtArcLength(const ComplexSequence &points, const std::vector<double
   if (points.empty()) return {};
   if (s <= 0.0) return points.front();
   if (s >= arc.back()) return points.back();
+  // The raw vector the point lies on: the first n with arc[n + 1] >= s (the raw vectors before
+  // it are passed over whole, eq. 7), walked from a valid hint, else found by bisection.
   std::size_t n = hint ? *hint : 0;
-  if (n >= points.size() - 1 || arc[n] > s) n = 0;
-  while (n + 2 < points.size() && arc[n + 1] < s) ++n;  // raw vectors passed over whole (eq. 7)
+  if (hint && n < points.size() - 1 && arc[n] <= s) {
+    while (n + 2 < points.size() && arc[n + 1] < s) ++n;
+  } else {
+    n = static_cast<std::size_t>(std::lower_bound(arc.begin() + 1, arc.end() - 1, s) - (arc.begin() + 1));
+  }
   if (hint) *hint = n;
   const double length = arc[n + 1] - arc[n];
   if (length <= 0.0) return points[n];

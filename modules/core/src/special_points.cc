@@ -16,17 +16,14 @@ struct Line {
 
 // Total-least-squares line through the raw points whose arc length lies in [from, to].
 bool fitLine(const ComplexSequence &points, const std::vector<double> &arc, double from, double to, Line &line) {
+  // The arc lengths grow along the contour: the points within [from, to] are one run.
+  const std::size_t first = std::lower_bound(arc.begin(), arc.end(), from) - arc.begin();
+  const std::size_t end = std::upper_bound(arc.begin() + first, arc.end(), to) - arc.begin();
+  if (end < first + 2) return false;
+  const std::size_t last = end - 1;
+  const int count = static_cast<int>(end - first);
   Complex sum = 0.0;
-  int count = 0;
-  std::size_t first = points.size(), last = 0;
-  for (std::size_t n = 0; n < points.size(); ++n) {
-    if (arc[n] < from || arc[n] > to) continue;
-    sum += points[n];
-    ++count;
-    first = std::min(first, n);
-    last = std::max(last, n);
-  }
-  if (count < 2) return false;
+  for (std::size_t n = first; n < end; ++n) sum += points[n];
   const Complex centroid = sum / static_cast<double>(count);
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
   for (std::size_t n = first; n <= last; ++n) {
