@@ -152,14 +152,14 @@ struct BearingIndex {
     return has_normal[j];
   }
 
-  // The normal at point j from its neighbours in the same contour, two on each side.
+  // The normal at point j from its neighbours in the same contour, two on each side (in the
+  // contour's own order: contours that share bearings, as scans merged into one cloud do,
+  // interleave in the bearing order).
   bool computeNormal(int j, Eigen::Vector2d &normal) const {
-    int lo = j, hi = j;
-    for (int k = 0; k < 2; ++k) {
-      if (lo > 0 && segment[lo - 1] == segment[j]) --lo;
-      if (hi + 1 < static_cast<int>(points.size()) && segment[hi + 1] == segment[j]) ++hi;
-    }
-    const Eigen::Vector2d along = points[hi] - points[lo];
+    const int contour = segment[j], lo = std::max(0, vertex[j] - 2),
+              hi = std::min(contour_size[contour] - 1, vertex[j] + 2);
+    const Eigen::Vector2d along =
+        toEigen(centred_vertices[first[contour] + hi] - centred_vertices[first[contour] + lo]);
     if (hi == lo || along.norm() < 1e-6) return false;
     normal = Eigen::Vector2d(-along.y(), along.x()).normalized();
     return true;
