@@ -20,14 +20,16 @@ namespace contour_reg {
 /// convention); z is left alone.
 ///
 /// Input: scans as ContourCornerEstimation takes them (beam order, NaN for invalid beams,
-/// z ignored). As in PCL, every setInputSource()/setInputTarget() is new data, also when it
-/// passes the same pointer again: a cloud refilled in place must be set again, and then its
-/// new contents count. align() reads the source cloud it holds every time (as ICP does); the
-/// target's special points are extracted at the first align() after setInputTarget() and kept
-/// for later align() calls until the target is set again (as PCL keeps the target's kd-tree).
-/// swapSourceAndTarget() is the one path that reuses the source's special points: odometry
-/// (each scan against the previous one) swaps, sets the new scan as source, and aligns, so
-/// each scan is read once. setIndices() names the source points to register, in beam order,
+/// z ignored); a target may also be several scans moved into one frame and appended, as
+/// pcl::registration::MetaRegistration keeps its map. As in PCL, every setInputSource() /
+/// setInputTarget() is new data, also when it passes the same pointer again: a cloud
+/// refilled in place must be set again, and then its new contents count. align() reads the
+/// source cloud it holds every time (as ICP does); the target's special points are extracted
+/// at the first align() after setInputTarget() and kept for later align() calls until the
+/// target is set again (as PCL keeps the target's kd-tree). swapSourceAndTarget() is the one
+/// path that reuses the source's special points: odometry (each scan against the previous
+/// one) swaps, sets the new scan as source, and aligns, so each scan is read once.
+/// setIndices() names the source points to register, in beam order,
 /// as ContourCornerEstimation takes them (the target is the whole cloud, as in pcl::Registration).
 /// They must name points of the source: PCL's align() copies those points to its output before
 /// the registration runs (which then reports an index outside as kInvalidParameters).
