@@ -20,13 +20,12 @@ bool fitLine(const ComplexSequence &points, const std::vector<double> &arc, doub
   const std::size_t first = std::lower_bound(arc.begin(), arc.end(), from) - arc.begin();
   const std::size_t end = std::upper_bound(arc.begin() + first, arc.end(), to) - arc.begin();
   if (end < first + 2) return false;
-  const std::size_t last = end - 1;
   const int count = static_cast<int>(end - first);
   Complex sum = 0.0;
   for (std::size_t n = first; n < end; ++n) sum += points[n];
   const Complex centroid = sum / static_cast<double>(count);
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
-  for (std::size_t n = first; n <= last; ++n) {
+  for (std::size_t n = first; n < end; ++n) {
     const Complex d = points[n] - centroid;
     sxx += d.real() * d.real();
     syy += d.imag() * d.imag();
@@ -34,7 +33,7 @@ bool fitLine(const ComplexSequence &points, const std::vector<double> &arc, doub
   }
   const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);  // principal axis
   Complex direction = std::polar(1.0, angle);
-  const Complex along = points[last] - points[first];
+  const Complex along = points[end - 1] - points[first];
   if ((along * std::conj(direction)).real() < 0.0) direction = -direction;
   // The smaller eigenvalue of the scatter matrix is the sum of squared distances from the line.
   const double mean = 0.5 * (sxx + syy), half_gap = std::hypot(0.5 * (sxx - syy), sxy);
