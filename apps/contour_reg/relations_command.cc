@@ -246,7 +246,9 @@ int runRelations(const RelationsOptions &options) {
     std::map<std::string, int> reasons;
     std::map<std::string, int> declined_right;  // per failure: the motion declined was within tolerance
     ProgressBar progress(name);
-    std::size_t recovered = 0, converged = 0, wrong = 0, gross = 0, gross_against_reference = 0;
+    std::size_t recovered = 0, converged = 0, wrong = 0, gross = 0;
+    // Answers converged but wrong, and gross errors, with a reference the scans contradict.
+    std::size_t wrong_against_reference = 0, gross_against_reference = 0;
     std::size_t with_rival = 0, rival_right = 0;  // converged pairs whose judge weighed a distinct rival
     double error_sum = 0.0;
     std::vector<double> ms;
@@ -286,20 +288,20 @@ int runRelations(const RelationsOptions &options) {
       answered.push_back({match.converged, match.converged && !ok, t});
       const bool gross_error = match.converged && isGross(et, er);
       // Each motion's evidence in the scans themselves, in the laser's frame like the scans:
-      // for the CSV and for the gross errors.
+      // for the CSV, the answers converged but wrong and the gross errors.
       double est_free_space = 0.0, ref_free_space = 0.0;
-      if (csv || gross_error) {
+      if (csv || (match.converged && !ok) || gross_error) {
         const evaluation::FreeSpaceCheck free_space(first, second);
         est_free_space = free_space.contradictedShare(laser_transform);
         ref_free_space = free_space.contradictedShare(
             io::toMatrix(robot_frame ? io::laserMotion(r.motion, *log.laser_pose) : r.motion));
       }
-      if (gross_error) {
-        ++gross;
-        // The scans contradict the reference and not the estimate: an error of the reference.
-        gross_against_reference += est_free_space < evaluation::kFreeSpaceShareTie &&
-                                   ref_free_space > est_free_space + evaluation::kFreeSpaceShareTie;
-      }
+      // The scans contradict the reference and not the estimate: an error of the reference.
+      const bool against_reference = est_free_space < evaluation::kFreeSpaceShareTie &&
+                                     ref_free_space > est_free_space + evaluation::kFreeSpaceShareTie;
+      wrong_against_reference += match.converged && !ok && against_reference;
+      gross += gross_error;
+      gross_against_reference += gross_error && against_reference;
       if (csv) {
         const Eigen::Matrix3d &c = match.covariance;
         std::fprintf(csv,
@@ -325,12 +327,13 @@ int runRelations(const RelationsOptions &options) {
     std::printf("| %s | %.1f %% | %.1f %% | %.1f %% | %.3f | %.3f | %.3f |\n", name.c_str(), 100 * recovered / n,
                 100 * converged / n, 100 * wrong / n, recovered ? error_sum / recovered : 0.0, percentile(ms, 0.5),
                 percentile(ms, 0.95));
-    gross_lines.push_back(name + ": " + std::to_string(gross) + " gross error(s) (converged, over " +
-                          std::to_string(static_cast<int>(100 * kGrossMetres)) + " cm or " +
-                          std::to_string(static_cast<int>(kGrossDegrees)) + " deg off), " +
-                          std::to_string(gross_against_reference) +
-                          " with a reference the scans contradict and an estimate they do not (returns in the other "
-                          "scan's free space; --pairs-csv: ref_free_space, est_free_space)");
+    gross_lines.push_back(
+        name + ": " + std::to_string(gross) + " gross error(s) (converged, over " +
+        std::to_string(static_cast<int>(100 * kGrossMetres)) + " cm or " +
+        std::to_string(static_cast<int>(kGrossDegrees)) + " deg off), " + std::to_string(gross_against_reference) +
+        " with a reference the scans contradict and an estimate they do not (returns in the other "
+        "scan's free space; --pairs-csv: ref_free_space, est_free_space); such a reference on " +
+        std::to_string(wrong_against_reference) + " of all " + std::to_string(wrong) + " converged but wrong");
     if (with_rival > 0)
       rival_lines.push_back(
           printed("%s: the judge weighed a distinct rival on %zu of %zu converged pairs; %zu of those "

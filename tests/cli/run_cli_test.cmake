@@ -175,7 +175,7 @@ endif()
 file(WRITE ${WORK_DIR}/straight.relations "0.0 0.5 0.25 0 0 0 0 0\n0.5 1.0 1.5 0 0 0 0 0\n")
 expect_run(0 relations ${LOG} --relations ${WORK_DIR}/straight.relations --methods contour
            --pairs-csv ${WORK_DIR}/straight.csv)
-expect_match("${LAST_OUT}" "contour: 1 gross error\\(s\\) [^\n]*, 1 with a reference the scans contradict and an estimate they do not")
+expect_match("${LAST_OUT}" "contour: 1 gross error\\(s\\) [^\n]*, 1 with a reference the scans contradict and an estimate they do not[^\n]*; such a reference on 1 of all 1 converged but wrong")
 if(LAST_OUT MATCHES "converged but wrong;")
   message(FATAL_ERROR "relations counts agreement with no independent method run:\n${LAST_OUT}")
 endif()
@@ -208,6 +208,11 @@ foreach(row IN LISTS rows)
     message(FATAL_ERROR "relations free space: reference ${reference_share}, estimate ${estimate_share} in ${row}")
   endif()
 endforeach()
+# A reference turned 4 deg too far is no gross error, yet converged but wrong, and the scans
+# contradict it: it puts the far walls' returns in the other scan's free space.
+file(WRITE ${WORK_DIR}/turned.relations "0.0 0.5 0.25 0 0 0 0 0.07\n")
+expect_run(0 relations ${LOG} --relations ${WORK_DIR}/turned.relations --methods contour)
+expect_match("${LAST_OUT}" "contour: 0 gross error\\(s\\) [^\n]*; such a reference on 1 of all 1 converged but wrong")
 
 # relations counts the converged pairs whose judge weighed a distinct rival, and on how many the
 # rival, not the answer, is the reference's motion: none against the ground truth. Given a
