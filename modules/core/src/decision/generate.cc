@@ -9,7 +9,8 @@ namespace contour_reg::decision {
 
 namespace {
 
-// Candidate pairs of corners taken as hypotheses of their own (in the order found: best first).
+// Candidate pairs of corners taken as hypotheses of their own: the first in the order found (the
+// source points in bearing order, each one's candidates best first).
 constexpr std::size_t kMaxPairHypotheses = 8;
 
 }  // namespace
