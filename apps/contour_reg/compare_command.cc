@@ -37,6 +37,7 @@ struct CompareOptions {
   bool keyframes = false;
   std::size_t local_map = 0;
   bool deskew = true, wheel_fusion = true;
+  bool log_poses = false;  // the log's own poses are the ground truth, hidden from the methods
   odometry::WheelNoise wheel_noise;
   unsigned jobs = 0;
   double local_dt = 5.0;
@@ -50,7 +51,14 @@ struct Input {
   io::ScanLog log;
   std::optional<io::Trajectory> ground_truth;
   std::optional<std::vector<io::Relation>> relations;
+  bool by_scan_order = false;  // with --log-poses: the log's stamps do not tell its scans apart
 };
+
+// `trajectory` with its k-th pose stamped k: poses paired by their order, not by their stamps.
+io::Trajectory stampedInOrder(io::Trajectory trajectory) {
+  for (std::size_t k = 0; k < trajectory.size(); ++k) trajectory[k].stamp = static_cast<double>(k);
+  return trajectory;
+}
 
 struct Row {
   std::string input, method;
@@ -152,12 +160,35 @@ Input loadInput(const CompareOptions &options, std::size_t k) {
   input.log = io::readLog(options.inputs[k], options.read);
   printReadReport(input.log);
   warnOfMissingOdometry(input.log, options.guess, options.read);
-  if (const std::string gt = reference(options.ground_truths, k, options.inputs[k], ".gt.tum"); !gt.empty())
+  if (options.log_poses) {
+    // The log's poses (the corrected poses of the Radish logs) are the reference: the methods
+    // run on the scans alone, so that neither a guess, the deskewing nor the fusion with the
+    // wheels reads them.
+    input.ground_truth = odometry::wheelOdometry(input.log);
+    if (input.ground_truth->size() < 2)
+      throw io::ReadError(options.inputs[k] + ": --log-poses, but the log has no poses of its own" +
+                          (options.read.wheel_odometry ? "" : " (read with --no-wheel-odometry)"));
+    io::leaveOutWheelOdometry(input.log);
+    // A log that kept its stamps to six digits, or none, has poses and trajectories of one
+    // pose per scan: they are paired by scan order.
+    if (const std::size_t repeated = evaluation::nonIncreasingStamps(*input.ground_truth); repeated > 0) {
+      input.by_scan_order = true;
+      input.ground_truth = stampedInOrder(*input.ground_truth);
+      std::fprintf(stderr,
+                   "note: %s: %zu of %zu scans are stamped no later than the one before: the trajectories are "
+                   "paired with the log's poses by scan order\n",
+                   options.inputs[k].c_str(), repeated, input.log.entries.size());
+    }
+  } else if (const std::string gt = reference(options.ground_truths, k, options.inputs[k], ".gt.tum"); !gt.empty()) {
     input.ground_truth = io::readTum(gt);
+  }
   if (const std::string rel = reference(options.relations, k, options.inputs[k], ".relations"); !rel.empty())
     input.relations = io::readRelations(rel);
   std::fprintf(stderr, "%s: %zu scans%s%s\n", options.inputs[k].c_str(), input.log.entries.size(),
-               input.ground_truth ? ", ground truth" : "", input.relations ? ", relations" : "");
+               !input.ground_truth ? ""
+               : options.log_poses ? ", ground truth: the log's poses"
+                                   : ", ground truth",
+               input.relations ? ", relations" : "");
   return input;
 }
 
@@ -207,6 +238,8 @@ Row readRow(const CompareOptions &options, const Input &input, const std::string
   row.median_ms = recordValue(record, "median_ms", path);
   row.p95_ms = recordValue(record, "p95_ms", path);
   row.trajectory = io::readTum(trajectoryPath(options, input.name, method));
+  if (input.by_scan_order && row.trajectory.size() == input.ground_truth->size())
+    row.trajectory = stampedInOrder(std::move(row.trajectory));
   row.evaluation = evaluation::evaluate(row.trajectory, input.ground_truth ? &*input.ground_truth : nullptr,
                                         input.relations ? &*input.relations : nullptr, options.local_dt);
   return row;
@@ -267,7 +300,19 @@ int runCompare(const CompareOptions &options) {
       if (row.input == input.name) any = &row;
     if (!any) continue;
     const evaluation::Evaluation &e = any->evaluation;
-    if (input.ground_truth && !e.end_point)
+    if (e.estimate_stamps_not_increasing > 0) {
+      std::fprintf(stderr,
+                   "warning: %s: %zu of the estimate's %zu stamps are no later than the one before: they do not "
+                   "tell its poses apart, and no metric is given\n",
+                   input.name.c_str(), e.estimate_stamps_not_increasing, e.estimate_poses);
+      continue;
+    }
+    if (e.ground_truth_stamps_not_increasing > 0)
+      std::fprintf(stderr,
+                   "warning: %s: %zu stamps of the ground truth are no later than the one before: no ground-truth "
+                   "metric\n",
+                   input.name.c_str(), e.ground_truth_stamps_not_increasing);
+    else if (input.ground_truth && !e.end_point)
       std::fprintf(stderr,
                    "warning: %s: the ground truth shares %zu stamps with the estimate: no ground-truth metric\n",
                    input.name.c_str(), e.matched_poses);
@@ -276,7 +321,8 @@ int runCompare(const CompareOptions &options) {
                    input.name.c_str(), input.relations->size());
   }
 
-  // The log's own wheel odometry, where it has it, as a baseline row.
+  // The log's own wheel odometry, where it has it, as a baseline row (with --log-poses the
+  // log's poses are the ground truth, and the inputs hold none).
   for (const Input &input : inputs) {
     const io::Trajectory wheel = odometry::wheelOdometry(input.log);
     if (wheel.size() < 2) continue;
@@ -321,6 +367,11 @@ void addCompareCommand(CLI::App &app) {
                    "Ground truth TUM per input, in order (default: INPUT_STEM.gt.tum beside the input)")
       ->check(CLI::ExistingFile);
   command
+      ->add_flag("--log-poses", options->log_poses,
+                 "Score against the poses in each log (the corrected poses of the Radish logs) as ground truth; the "
+                 "methods then run on the scans alone")
+      ->excludes("--gt");
+  command
       ->add_option("--relations", options->relations,
                    "Relations file per input, in order (default: INPUT_STEM.relations beside the input)")
       ->check(CLI::ExistingFile);
@@ -340,6 +391,9 @@ void addCompareCommand(CLI::App &app) {
   addFanOutOptions(*command, options->fan_out);
   command->callback([options]() {
     validateMethodOptions(options->method_options);
+    if (options->log_poses && options->guess == "odom")
+      throw CLI::ValidationError("--guess odom",
+                                 "would start each registration from the log's poses, the ground truth of --log-poses");
     const std::size_t jobs = options->inputs.size() * options->methods.size();
     if (options->fan_out.job && *options->fan_out.job >= jobs)
       throw CLI::ValidationError("--job",

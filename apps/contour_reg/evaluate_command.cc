@@ -28,7 +28,21 @@ int runEvaluate(const EvaluateOptions &options) {
   std::printf("%s: %zu poses, path %.2f m\n", options.trajectory.c_str(), estimate.size(),
               evaluation::pathLength(estimate));
   int code = 0;
-  if (!options.ground_truth.empty()) {
+  // Stamps that do not increase cannot find poses: no metric of them then.
+  const auto stampsDoNotIncrease = [&](const std::string &path, std::size_t count, std::size_t poses,
+                                       const char *which) {
+    if (count == 0) return false;
+    std::fprintf(stderr,
+                 "error: %s: %zu of its %zu stamps are no later than the one before: they do not tell its poses "
+                 "apart, and no %smetric is given\n",
+                 path.c_str(), count, poses, which);
+    return true;
+  };
+  if (stampsDoNotIncrease(options.trajectory, e.estimate_stamps_not_increasing, estimate.size(), "")) return 1;
+  if (!options.ground_truth.empty() && stampsDoNotIncrease(options.ground_truth, e.ground_truth_stamps_not_increasing,
+                                                           ground_truth.size(), "ground-truth "))
+    code = 1;
+  if (!options.ground_truth.empty() && code == 0) {
     if (e.end_point) {
       std::printf("ground truth: %zu of %zu poses matched by stamp\n", e.matched_poses, e.estimate_poses);
       std::printf("end-point error: %.3f m over %.2f m of ground-truth path = %.2f %%\n", e.end_point->error,

@@ -51,6 +51,8 @@ py::dict evaluateTrajectory(const py::handle &estimate, const py::object &ground
   py::dict d;
   d["estimate_poses"] = e.estimate_poses;
   d["matched_poses"] = e.matched_poses;
+  d["estimate_stamps_not_increasing"] = e.estimate_stamps_not_increasing;
+  d["ground_truth_stamps_not_increasing"] = e.ground_truth_stamps_not_increasing;
   if (e.end_point) {
     d["end_point_percent"] = e.end_point->percent;
     d["end_point_m"] = e.end_point->error;
@@ -81,7 +83,9 @@ void bindEvaluation(py::module_ &m) {
         "end-point error over path length), end_point_m, path_length_m, drift_percent (over 10 m windows), ate_m. "
         "With relations (N x 5): relations_all and relations_local (|t2 - t1| <= local_dt s), each with count, "
         "missing, translation_mean_m, translation_std_m, rotation_mean_deg, rotation_std_deg. A metric the "
-        "references do not cover is absent.");
+        "references do not cover is absent, and so is every metric where the estimate's stamps do not increase, "
+        "and every ground-truth metric where the ground truth's do not (estimate_stamps_not_increasing, "
+        "ground_truth_stamps_not_increasing count those stamps).");
   m.def(
       "relation_errors",
       [](const py::handle &estimate, const py::handle &relations, double max_dt) {

@@ -131,6 +131,48 @@ expect_run(0 simulate --path line --rate 2 -o ${WORK_DIR}/sim/s.clf)
 expect_run(0 compare ${WORK_DIR}/sim/s.clf --methods contour --out ${WORK_DIR}/sim/compare)
 expect_match("${LAST_ERR}" "s.clf: [0-9]+ scans, ground truth")
 expect_match("${LAST_OUT}" "\\| s \\| contour \\| [0-9]+ / [0-9]+ \\| - \\| - \\| - \\| [0-9.]+ \\|")
+# With --log-poses the log's own poses (here exact wheel odometry) are the ground truth, and the
+# methods run on the scans alone (neither the deskewing of timed scans nor the fusion reads
+# the poses): the trajectory and its score are those of the scans alone against the TUM ground
+# truth, and no wheel-odometry row scores the reference against itself.
+expect_run(0 simulate --path S --rate 2 --odometry-noise 0 -o ${WORK_DIR}/sim/exact.clf)
+expect_run(0 compare ${WORK_DIR}/sim/exact.clf --methods contour --scan-period 0.1 --log-poses --out ${WORK_DIR}/sim/by-log)
+number_in("${LAST_OUT}" "\\| exact \\| contour \\| [0-9]+ / [0-9]+ \\| - \\| - \\| - \\| ([0-9.]+) \\|" by_log)
+if(LAST_OUT MATCHES "wheel-odometry")
+  message(FATAL_ERROR "compare --log-poses scored the log's poses against themselves:\n${LAST_OUT}")
+endif()
+expect_run(0 compare ${WORK_DIR}/sim/exact.clf --methods contour --scan-period 0.1 --no-wheel-odometry
+           --out ${WORK_DIR}/sim/by-gt)
+number_in("${LAST_OUT}" "\\| exact \\| contour \\| [0-9]+ / [0-9]+ \\| - \\| - \\| - \\| ([0-9.]+) \\|" by_gt)
+file(READ ${WORK_DIR}/sim/by-log/exact.contour.tum by_log_trajectory)
+file(READ ${WORK_DIR}/sim/by-gt/exact.contour.tum by_gt_trajectory)
+if(NOT by_log_trajectory STREQUAL by_gt_trajectory OR NOT by_log STREQUAL by_gt)
+  message(FATAL_ERROR "compare --log-poses: end point ${by_log} % against the ground truth's ${by_gt} %, "
+                      "or the methods read the log's poses")
+endif()
+expect_run(2 compare ${WORK_DIR}/sim/exact.clf --log-poses --gt ${WORK_DIR}/sim/exact.gt.tum --out ${OUT}/compare)
+expect_match("${LAST_ERR}" "--gt excludes --log-poses")
+expect_run(2 compare ${WORK_DIR}/sim/exact.clf --log-poses --guess odom --out ${OUT}/compare)
+expect_match("${LAST_ERR}" "--guess odom: would start each registration from the log's poses")
+expect_run(2 compare ${WORK_DIR}/sim/exact.clf --log-poses --no-wheel-odometry --out ${OUT}/compare)
+expect_match("${LAST_ERR}" "exact.clf: --log-poses, but the log has no poses of its own \\(read with --no-wheel-odometry\\)")
+# A log that kept no stamps (as some Radish logs, stamped 0 or to six digits): its scans and the
+# poses they carry are paired by scan order, and score as the stamped log does. Its stamps
+# cannot pair a trajectory with a ground truth: evaluate gives no metric rather than a false one.
+expect_run(0 simulate --path S --rate 2 --odometry-noise 0 --odometry-rate 0 -o ${WORK_DIR}/sim/stamped.clf)
+file(READ ${WORK_DIR}/sim/stamped.clf stamped)
+string(REGEX REPLACE " [0-9.]+ sim [0-9.]+\n" " 0 sim 0\n" unstamped "${stamped}")
+file(WRITE ${WORK_DIR}/sim/unstamped.clf "${unstamped}")
+foreach(log stamped unstamped)
+  expect_run(0 compare ${WORK_DIR}/sim/${log}.clf --methods contour --log-poses --out ${WORK_DIR}/sim/${log})
+  number_in("${LAST_OUT}" "\\| ${log} \\| contour \\| [0-9]+ / [0-9]+ \\| - \\| - \\| - \\| ([0-9.]+) \\|" end_point_${log})
+endforeach()
+expect_match("${LAST_ERR}" "unstamped.clf: [0-9]+ of [0-9]+ scans are stamped no later than the one before: the trajectories are paired with the log's poses by scan order")
+if(NOT end_point_stamped STREQUAL end_point_unstamped)
+  message(FATAL_ERROR "compare --log-poses: ${end_point_unstamped} % by scan order, ${end_point_stamped} % by stamp")
+endif()
+expect_run(1 evaluate ${WORK_DIR}/sim/unstamped/unstamped.contour.tum --gt ${WORK_DIR}/sim/unstamped/unstamped.contour.tum)
+expect_match("${LAST_ERR}" "unstamped.contour.tum: [0-9]+ of its [0-9]+ stamps are no later than the one before: they do not tell its poses apart, and no metric is given")
 
 # features reads every input kind: a ROS bag when the shared datasets are there.
 set(BAG ${SOURCE_DIR}/../shared/datasets/intel/intel.orig.bag)

@@ -114,5 +114,38 @@ TEST(Metrics, PosesBetweenSamplesAreInterpolated) {
   EXPECT_FALSE(poseAt(t, 1.0));  // samples more than the default 1 s apart
 }
 
+// A log that kept its stamps to six digits (1.01893e+09 for every scan): stamps that do not
+// tell the poses apart. The metrics would pair every pose with one reference pose, a path of
+// no length, and report a 0 % end-point error; they report nothing instead.
+TEST(Metrics, StampsThatDoNotIncreaseGiveNoMetric) {
+  const io::Trajectory truth = square();
+  io::Trajectory estimate = truth;
+  estimate.back().pose.x += 4.0;
+  io::Trajectory same_stamps = estimate, same_truth = truth;
+  for (auto &p : same_stamps) p.stamp = 1.01893e9;
+  for (auto &p : same_truth) p.stamp = 1.01893e9;
+  EXPECT_EQ(nonIncreasingStamps(truth), 0u);
+  EXPECT_EQ(nonIncreasingStamps(same_stamps), 40u);
+
+  const std::vector<io::Relation> relations{{1.01893e9, 1.01893e9, {}}};
+  const Evaluation by_estimate = evaluate(same_stamps, &truth, &relations);
+  EXPECT_EQ(by_estimate.estimate_stamps_not_increasing, 40u);
+  EXPECT_FALSE(by_estimate.end_point);
+  EXPECT_FALSE(by_estimate.ate);
+  EXPECT_FALSE(by_estimate.relations_all);
+
+  // The trajectory of such a log against the log's own poses, both stamped alike.
+  const Evaluation alike = evaluate(same_stamps, &same_truth, nullptr);
+  EXPECT_EQ(alike.ground_truth_stamps_not_increasing, 40u);
+  EXPECT_FALSE(alike.end_point);
+  EXPECT_FALSE(alike.drift);
+  EXPECT_FALSE(alike.ate);
+
+  // Stamps that increase: the 4 m error over the 40 m walked.
+  const Evaluation stamped = evaluate(estimate, &truth, nullptr);
+  ASSERT_TRUE(stamped.end_point);
+  EXPECT_NEAR(stamped.end_point->percent, 10.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace contour_reg::evaluation

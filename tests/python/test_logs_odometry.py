@@ -93,6 +93,14 @@ def test_simulate_and_evaluate_know_the_truth(s_run):
     end = cr.evaluate(shifted, s_run.ground_truth)
     assert end["end_point_m"] == pytest.approx(0.5, abs=1e-6)
     assert "relations_all" not in end
+    # Stamps that do not tell the poses apart (a log that kept none) pair nothing: no metric,
+    # and the count says why.
+    unstamped = shifted.copy()
+    unstamped[:, 0] = 0.0
+    none = cr.evaluate(unstamped, unstamped)
+    assert "end_point_percent" not in none and "ate_m" not in none
+    assert none["estimate_stamps_not_increasing"] == len(unstamped) - 1
+    assert end["estimate_stamps_not_increasing"] == 0 and end["ground_truth_stamps_not_increasing"] == 0
 
 
 def test_the_wheel_odometry_is_logged_between_the_scans(s_run):

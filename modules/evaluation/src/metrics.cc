@@ -173,11 +173,20 @@ RelationErrors relationErrors(const io::Trajectory &estimate, const std::vector<
   return result;
 }
 
+std::size_t nonIncreasingStamps(const io::Trajectory &trajectory) {
+  std::size_t count = 0;
+  for (std::size_t k = 1; k < trajectory.size(); ++k) count += !(trajectory[k].stamp > trajectory[k - 1].stamp);
+  return count;
+}
+
 Evaluation evaluate(const io::Trajectory &estimate, const io::Trajectory *ground_truth,
                     const std::vector<io::Relation> *relations, double local_dt) {
   Evaluation result;
   result.estimate_poses = estimate.size();
-  if (ground_truth) {
+  result.estimate_stamps_not_increasing = nonIncreasingStamps(estimate);
+  if (ground_truth) result.ground_truth_stamps_not_increasing = nonIncreasingStamps(*ground_truth);
+  if (result.estimate_stamps_not_increasing > 0) return result;
+  if (ground_truth && result.ground_truth_stamps_not_increasing == 0) {
     const Association association = associate(estimate, *ground_truth);
     result.matched_poses = association.stamps.size();
     if (result.matched_poses >= 2) {

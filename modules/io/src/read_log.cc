@@ -66,11 +66,13 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
                   std::hypot(mounting->x, mounting->y), mounting->yaw, kFarthestMounting);
     throw ReadError(path + message);
   }
-  if (!options.wheel_odometry) {
-    log.wheel_odometry.clear();
-    for (LogEntry &entry : log.entries) entry.odometry.reset();
-  }
+  if (!options.wheel_odometry) leaveOutWheelOdometry(log);
   return log;
+}
+
+void leaveOutWheelOdometry(ScanLog &log) {
+  log.wheel_odometry.clear();
+  for (LogEntry &entry : log.entries) entry.odometry.reset();
 }
 
 std::size_t nearestEntry(const ScanLog &log, double stamp) {

@@ -77,14 +77,22 @@ constexpr double kNees99 = 11.34;
 double normalisedErrorSquared(const io::Pose2D &estimate, const io::Pose2D &reference,
                               const Eigen::Matrix3d &covariance, double floor_m, double floor_rad);
 
+/// The poses of `trajectory` whose stamp is no later than the one before: stamps that do not
+/// tell poses apart (a log that kept its stamps to six digits, or none).
+std::size_t nonIncreasingStamps(const io::Trajectory &trajectory);
+
 /// Every metric the references allow: against ground truth (end point, drift, ATE) and
 /// against relations (all of them, and the local ones with |t2 - t1| <= local_dt). A
 /// reference that covers too little gives no metric rather than a zero: the ground-truth
 /// metrics need two estimated poses with a ground-truth pose, the relation means one
 /// relation whose stamps the estimate covers (relations_all then says only how many it missed).
+/// Every metric finds poses by their stamps: an estimate whose stamps do not increase gets
+/// none, and a ground truth whose stamps do not increase gives none.
 struct Evaluation {
   std::size_t estimate_poses = 0;  ///< poses in the estimate
-  std::size_t matched_poses = 0;   ///< of them, with a ground-truth pose (0 without ground truth)
+  /// nonIncreasingStamps of the estimate and of the ground truth (0 without one)
+  std::size_t estimate_stamps_not_increasing = 0, ground_truth_stamps_not_increasing = 0;
+  std::size_t matched_poses = 0;  ///< of them, with a ground-truth pose (0 without ground truth)
   std::optional<EndPointError> end_point;
   std::optional<Drift> drift;
   std::optional<double> ate;

@@ -43,6 +43,10 @@ struct LogReadOptions {
 /// mounting.
 ScanLog readLog(const std::string &path, const LogReadOptions &options = {});
 
+/// Leaves the log's wheel odometry (and the poses its scan lines carry) out: the scans alone,
+/// as LogReadOptions::wheel_odometry = false reads them.
+void leaveOutWheelOdometry(ScanLog &log);
+
 /// The index of the entry whose scan stamp is nearest `stamp` (s); the later one on a tie.
 /// `log` must have an entry.
 std::size_t nearestEntry(const ScanLog &log, double stamp);
