@@ -122,8 +122,9 @@ void writeTables(const std::vector<Row> &rows, const CompareOptions &options) {
                   cell(opt(rel, rel ? e.relations_local->rotation_mean : 0), "%.2f").c_str(),
                   cell(opt(rel, rel ? e.relations_all->translation_mean : 0), "%.3f").c_str(),
                   cell(opt(gt, gt ? e.end_point->percent : 0), "%.2f").c_str(),
-                  cell(opt(gt, gt ? e.drift->mean_percent : 0), "%.2f").c_str(), cell(e.ate, "%.3f").c_str(),
-                  cell(opt(timed, row.median_ms), "%.3f").c_str(), cell(opt(timed, row.p95_ms), "%.3f").c_str());
+                  cell(opt(e.drift.has_value(), e.drift ? e.drift->mean_percent : 0), "%.2f").c_str(),
+                  cell(e.ate, "%.3f").c_str(), cell(opt(timed, row.median_ms), "%.3f").c_str(),
+                  cell(opt(timed, row.p95_ms), "%.3f").c_str());
     text += line;
     std::fprintf(csv, "%s,%s,%zu,%zu,%zu,%zu,%.6f,%.6f,%.4f,%.4f,%zu,%.6f,%.4f,%.6f,%.4f,%.4f,%.6f,%.4f,%.4f\n",
                  row.input.c_str(), row.method.c_str(), row.registrations, row.failures, row.degenerate,
@@ -131,7 +132,7 @@ void writeTables(const std::vector<Row> &rows, const CompareOptions &options) {
                  rel ? e.relations_local->translation_std : NAN, rel ? e.relations_local->rotation_mean : NAN,
                  rel ? e.relations_local->rotation_std : NAN, rel ? e.relations_all->count : 0,
                  rel ? e.relations_all->translation_mean : NAN, rel ? e.relations_all->rotation_mean : NAN,
-                 gt ? e.end_point->error : NAN, gt ? e.end_point->percent : NAN, gt ? e.drift->mean_percent : NAN,
+                 gt ? e.end_point->error : NAN, gt ? e.end_point->percent : NAN, e.drift ? e.drift->mean_percent : NAN,
                  e.ate.value_or(NAN), timed ? row.median_ms : NAN, timed ? row.p95_ms : NAN);
   }
   std::fputs(text.c_str(), table);
@@ -312,7 +313,7 @@ int runCompare(const CompareOptions &options) {
                    "warning: %s: %zu stamps of the ground truth are no later than the one before: no ground-truth "
                    "metric\n",
                    input.name.c_str(), e.ground_truth_stamps_not_increasing);
-    else if (input.ground_truth && !e.end_point)
+    else if (input.ground_truth && !e.ate)
       std::fprintf(stderr,
                    "warning: %s: the ground truth shares %zu stamps with the estimate: no ground-truth metric\n",
                    input.name.c_str(), e.matched_poses);

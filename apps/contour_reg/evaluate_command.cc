@@ -43,11 +43,17 @@ int runEvaluate(const EvaluateOptions &options) {
                                                            ground_truth.size(), "ground-truth "))
     code = 1;
   if (!options.ground_truth.empty() && code == 0) {
-    if (e.end_point) {
+    if (e.ate) {
       std::printf("ground truth: %zu of %zu poses matched by stamp\n", e.matched_poses, e.estimate_poses);
-      std::printf("end-point error: %.3f m over %.2f m of ground-truth path = %.2f %%\n", e.end_point->error,
-                  e.end_point->path_length, e.end_point->percent);
-      std::printf("drift over 10 m windows: %.2f %% (%zu windows)\n", e.drift->mean_percent, e.drift->windows);
+      if (e.end_point)
+        std::printf("end-point error: %.3f m over %.2f m of ground-truth path = %.2f %%\n", e.end_point->error,
+                    e.end_point->path_length, e.end_point->percent);
+      else
+        std::printf("end-point error: - (the ground truth does not move)\n");
+      if (e.drift)
+        std::printf("drift over 10 m windows: %.2f %% (%zu windows)\n", e.drift->mean_percent, e.drift->windows);
+      else
+        std::printf("drift over 10 m windows: - (the ground-truth path is shorter than 10 m)\n");
       std::printf("ATE after SE(2) alignment: %.3f m RMSE\n", *e.ate);
     } else {
       std::fprintf(stderr,

@@ -147,5 +147,28 @@ TEST(Metrics, StampsThatDoNotIncreaseGiveNoMetric) {
   EXPECT_NEAR(stamped.end_point->percent, 10.0, 1e-9);
 }
 
+// A metric that does not apply is absent, not 0: a run shorter than the 10 m drift window has
+// no drift, and a reference that does not move has no end-point error over its path length.
+TEST(Metrics, ARunShorterThanTheWindowHasNoDriftAndOneStandingStillNoEndPointError) {
+  io::Trajectory truth, estimate;
+  for (int k = 0; k <= 10; ++k) {
+    truth.push_back({double(k), {0.5 * k, 0.0, 0.0}});     // 5 m
+    estimate.push_back({double(k), {0.6 * k, 0.0, 0.0}});  // 1 m too far at the end
+  }
+  const Evaluation short_run = evaluate(estimate, &truth, nullptr);
+  ASSERT_TRUE(short_run.end_point);
+  EXPECT_NEAR(short_run.end_point->percent, 20.0, 1e-9);
+  EXPECT_FALSE(short_run.drift);
+  ASSERT_TRUE(short_run.ate);
+
+  io::Trajectory standing = truth;
+  for (auto &p : standing) p.pose = {};
+  const Evaluation still = evaluate(estimate, &standing, nullptr);
+  EXPECT_FALSE(still.end_point);
+  EXPECT_FALSE(still.drift);
+  ASSERT_TRUE(still.ate);  // the positions' error needs no path
+  EXPECT_GT(*still.ate, 1.0);
+}
+
 }  // namespace
 }  // namespace contour_reg::evaluation

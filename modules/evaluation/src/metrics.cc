@@ -190,8 +190,8 @@ Evaluation evaluate(const io::Trajectory &estimate, const io::Trajectory *ground
     const Association association = associate(estimate, *ground_truth);
     result.matched_poses = association.stamps.size();
     if (result.matched_poses >= 2) {
-      result.end_point = endPointError(association);
-      result.drift = drift(association);
+      if (const EndPointError e = endPointError(association); e.path_length > 0.0) result.end_point = e;
+      if (const Drift d = drift(association); d.windows > 0) result.drift = d;
       result.ate = absoluteTrajectoryError(association);
     }
   }

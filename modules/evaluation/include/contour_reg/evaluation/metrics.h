@@ -84,8 +84,9 @@ std::size_t nonIncreasingStamps(const io::Trajectory &trajectory);
 /// Every metric the references allow: against ground truth (end point, drift, ATE) and
 /// against relations (all of them, and the local ones with |t2 - t1| <= local_dt). A
 /// reference that covers too little gives no metric rather than a zero: the ground-truth
-/// metrics need two estimated poses with a ground-truth pose, the relation means one
-/// relation whose stamps the estimate covers (relations_all then says only how many it missed).
+/// metrics need two estimated poses with a ground-truth pose (the end point a reference path
+/// of some length, the drift one window of it), the relation means one relation whose stamps
+/// the estimate covers (relations_all then says only how many it missed).
 /// Every metric finds poses by their stamps: an estimate whose stamps do not increase gets
 /// none, and a ground truth whose stamps do not increase gives none.
 struct Evaluation {
