@@ -37,6 +37,13 @@ std::string beamsRead(const io::LogReadOptions &read) {
   return read.beam_step > 1 ? " (one beam in " + std::to_string(read.beam_step) + ")" : "";
 }
 
+std::string stampsDoNotIncrease(std::size_t count, std::size_t poses, const char *which) {
+  return printed(
+      "%zu of its %zu stamps are no later than the one before: they do not tell its poses apart, and no "
+      "%smetric is given",
+      count, poses, which);
+}
+
 void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, const io::LogReadOptions &read) {
   if (guess != "odom") return;
   std::size_t without = 0;

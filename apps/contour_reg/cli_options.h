@@ -257,6 +257,10 @@ std::string printed(const char *format, ...) __attribute__((format(printf, 1, 2)
 /// registrations start from no motion.
 void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, const io::LogReadOptions &read);
 
+/// Why a trajectory whose `count` of `poses` stamps are no later than the one before gets no
+/// metric (evaluation::nonIncreasingStamps; `which`: "" or "ground-truth "), to follow "FILE: ".
+std::string stampsDoNotIncrease(std::size_t count, std::size_t poses, const char *which);
+
 using evaluation::percentile;
 
 }  // namespace contour_reg::cli

@@ -302,17 +302,15 @@ int runCompare(const CompareOptions &options) {
     if (!any) continue;
     const evaluation::Evaluation &e = any->evaluation;
     if (e.estimate_stamps_not_increasing > 0) {
-      std::fprintf(stderr,
-                   "warning: %s: %zu of the estimate's %zu stamps are no later than the one before: they do not "
-                   "tell its poses apart, and no metric is given\n",
-                   input.name.c_str(), e.estimate_stamps_not_increasing, e.estimate_poses);
+      std::fprintf(stderr, "warning: %s, the estimate: %s\n", input.name.c_str(),
+                   stampsDoNotIncrease(e.estimate_stamps_not_increasing, e.estimate_poses, "").c_str());
       continue;
     }
     if (e.ground_truth_stamps_not_increasing > 0)
-      std::fprintf(stderr,
-                   "warning: %s: %zu stamps of the ground truth are no later than the one before: no ground-truth "
-                   "metric\n",
-                   input.name.c_str(), e.ground_truth_stamps_not_increasing);
+      std::fprintf(
+          stderr, "warning: %s, the ground truth: %s\n", input.name.c_str(),
+          stampsDoNotIncrease(e.ground_truth_stamps_not_increasing, input.ground_truth->size(), "ground-truth ")
+              .c_str());
     else if (input.ground_truth && !e.ate)
       std::fprintf(stderr,
                    "warning: %s: the ground truth shares %zu stamps with the estimate: no ground-truth metric\n",

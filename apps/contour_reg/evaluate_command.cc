@@ -29,19 +29,17 @@ int runEvaluate(const EvaluateOptions &options) {
               evaluation::pathLength(estimate));
   int code = 0;
   // Stamps that do not increase cannot find poses: no metric of them then.
-  const auto stampsDoNotIncrease = [&](const std::string &path, std::size_t count, std::size_t poses,
-                                       const char *which) {
-    if (count == 0) return false;
-    std::fprintf(stderr,
-                 "error: %s: %zu of its %zu stamps are no later than the one before: they do not tell its poses "
-                 "apart, and no %smetric is given\n",
-                 path.c_str(), count, poses, which);
-    return true;
-  };
-  if (stampsDoNotIncrease(options.trajectory, e.estimate_stamps_not_increasing, estimate.size(), "")) return 1;
-  if (!options.ground_truth.empty() && stampsDoNotIncrease(options.ground_truth, e.ground_truth_stamps_not_increasing,
-                                                           ground_truth.size(), "ground-truth "))
+  if (e.estimate_stamps_not_increasing > 0) {
+    std::fprintf(stderr, "error: %s: %s\n", options.trajectory.c_str(),
+                 stampsDoNotIncrease(e.estimate_stamps_not_increasing, estimate.size(), "").c_str());
+    return 1;
+  }
+  if (e.ground_truth_stamps_not_increasing > 0) {
+    std::fprintf(
+        stderr, "error: %s: %s\n", options.ground_truth.c_str(),
+        stampsDoNotIncrease(e.ground_truth_stamps_not_increasing, ground_truth.size(), "ground-truth ").c_str());
     code = 1;
+  }
   if (!options.ground_truth.empty() && code == 0) {
     if (e.ate) {
       std::printf("ground truth: %zu of %zu poses matched by stamp\n", e.matched_poses, e.estimate_poses);

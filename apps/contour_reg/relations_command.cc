@@ -284,13 +284,14 @@ int runRelations(const RelationsOptions &options) {
           declined_right[match.status] += right;
         }
       }
-      wrong += match.converged && !ok;
-      answered.push_back({match.converged, match.converged && !ok, t});
+      const bool silently_wrong = match.converged && !ok;
+      wrong += silently_wrong;
+      answered.push_back({match.converged, silently_wrong, t});
       const bool gross_error = match.converged && isGross(et, er);
       // Each motion's evidence in the scans themselves, in the laser's frame like the scans:
       // for the CSV, the answers converged but wrong and the gross errors.
       double est_free_space = 0.0, ref_free_space = 0.0;
-      if (csv || (match.converged && !ok) || gross_error) {
+      if (csv || silently_wrong || gross_error) {
         const evaluation::FreeSpaceCheck free_space(first, second);
         est_free_space = free_space.contradictedShare(laser_transform);
         ref_free_space = free_space.contradictedShare(
@@ -299,7 +300,7 @@ int runRelations(const RelationsOptions &options) {
       // The scans contradict the reference and not the estimate: an error of the reference.
       const bool against_reference = est_free_space < evaluation::kFreeSpaceShareTie &&
                                      ref_free_space > est_free_space + evaluation::kFreeSpaceShareTie;
-      wrong_against_reference += match.converged && !ok && against_reference;
+      wrong_against_reference += silently_wrong && against_reference;
       gross += gross_error;
       gross_against_reference += gross_error && against_reference;
       if (csv) {
