@@ -265,6 +265,29 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
   return found.ties.empty();
 }
 
+// A rival that scores within this of the best fits nearly as well: the contours' lead is small
+// enough for the beams to decide (beamsSideWithRival).
+constexpr double kNearlyAsWell = 2.0 * kScoreTie;
+
+// Whether the beams side with the rival: a distinct motion the judge weighed scores within
+// kNearlyAsWell of the best, and the best puts more than the tie's share more of both scans'
+// returns, beam by beam, in the other scan's free space than the rival does
+// (contradictedReturns). The score weighs stretches of contour where both contours have
+// returns; the beams are all each scan saw through, sparse returns between the contours
+// included, and what moved between the scans (people) stands in both motions' way alike. If
+// they side with the rival, `what` gives both shares.
+bool beamsSideWithRival(Judged &found, Scorer &scorer, std::string &what) {
+  if (!found.rival || found.rival->score <= scorer.score(found.best) - kNearlyAsWell) return false;
+  const double against_best = scorer.contradictedReturns(found.best.refined.transform);
+  if (!(against_best > kScoreTie)) return false;
+  const double against_rival = scorer.contradictedReturns(found.rival->refined.transform);
+  if (!(against_best > against_rival + kScoreTie)) return false;
+  const auto percent = [](double share) { return std::to_string(static_cast<int>(std::lround(100 * share))) + " %"; };
+  what = "it puts " + percent(against_best) + " of the scans' returns in the other's free space, the rival " +
+         percent(against_rival);
+  return true;
+}
+
 }  // namespace
 
 void Judged::promoteRival() {
@@ -343,6 +366,10 @@ RegistrationStatus judgeCornerMotion(Judged &found, std::size_t corners, const R
   if (!standsAgainstRepetition(found, params, buffers, scorer))
     return verdict(RegistrationStatus::kAmbiguous,
                    ", and a motion a period along repeated structure fits what both scans saw as well");
+  std::string beams;
+  if (beamsSideWithRival(found, scorer, beams))
+    return verdict(RegistrationStatus::kAmbiguous,
+                   ", but a distinct motion fits nearly as well and the beams side with it: " + beams);
   against.clear();
   return RegistrationStatus::kConverged;
 }
@@ -416,6 +443,9 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
       return decline(RegistrationStatus::kAmbiguous, "a distinct motion along the weakest direction fits as well");
     }
     if (beamsDisagree(finding)) return decline(RegistrationStatus::kLowOverlap, lowOverlapText() + ", and " + finding);
+    if (beamsSideWithRival(found, scorer, finding))
+      return decline(RegistrationStatus::kAmbiguous,
+                     "a distinct motion fits nearly as well and the beams side with it: " + finding);
     why.clear();
     return RegistrationStatus::kConverged;
   }

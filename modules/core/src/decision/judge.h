@@ -25,6 +25,12 @@
 ///   row of doors) lays nearly as much of what both scans saw on the target (repetition.h);
 /// - for the contours' own motion, the best along its weakest direction: refinements started
 ///   along it out to the scan's RMS range reach no distinct motion that scores as well.
+/// - not outvoted by the beams: where a distinct motion scores nearly as well (within twice the
+///   tie), the best puts no more of both scans' returns, beam by beam, in the other scan's free
+///   space than that rival, give or take the tie. The contours' stretches miss what the beams
+///   between them saw (a 180 deg LIDAR's sparse returns, what lies between two contours), and a
+///   room's corner seen from elsewhere, turned 90 deg, can lay two walls on the target nearly as
+///   well as the truth does.
 /// Free-space evidence enters through the score: a rival that puts walls where the other scan
 /// looked through empty space scores lower and is no rival.
 
