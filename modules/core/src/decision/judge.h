@@ -24,7 +24,7 @@
 /// - not repeated: no motion a period of repeated structure off it (a door further along a
 ///   row of doors) lays nearly as much of what both scans saw on the target (repetition.h);
 /// - for the contours' own motion, the best along its weakest direction: refinements started
-///   along it out to the scan's RMS range reach no distinct motion that scores as well.
+///   along it out to the scan's RMS range reach no distinct motion that scores as well;
 /// - not outvoted by the beams: where a distinct motion scores nearly as well (within twice the
 ///   tie), the best puts no more of both scans' returns, beam by beam, in the other scan's free
 ///   space than that rival, give or take the tie. The contours' stretches miss what the beams

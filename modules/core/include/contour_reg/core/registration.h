@@ -163,9 +163,8 @@ struct RegistrationResult {
   /// An ambiguous verdict's distinct motions that fit the scans about as well: the best, then
   /// the rival it ties with (a candidate within the score's tie, or one nearly as good that the
   /// beams side with), or every motion a period along repeated structure that ties with it,
-  /// either way along it. The scans cannot tell
-  /// them apart; a prior on the motion that allows one of them alone can (odometry's
-  /// prediction over the interval does). Empty otherwise.
+  /// either way along it. The scans cannot tell them apart; a prior on the motion that allows
+  /// one of them alone can (odometry's prediction over the interval does). Empty otherwise.
   std::vector<RejectedMotion> alternatives;
 };
 
