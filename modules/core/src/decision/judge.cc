@@ -19,6 +19,9 @@ constexpr double kSettledBack = 0.25;
 // How many times the contours' best may give way to a clearly better motion a probe found.
 constexpr int kMaxPromotions = 2;
 
+// A share (0-1) as a whole percentage, for a verdict's reason: "12 %".
+std::string percent(double share) { return std::to_string(static_cast<int>(std::lround(100 * share))) + " %"; }
+
 // How far `motion` lies from `best` (x m, y m, yaw as metres of arc at best's RMS range).
 Eigen::Vector3d offsetFrom(const RefinementResult &best, const Eigen::Matrix3d &motion) {
   return {motion(0, 2) - best.transform(0, 2), motion(1, 2) - best.transform(1, 2),
@@ -199,8 +202,8 @@ bool refuted(Judged &found, Scorer &scorer, std::string &what) {
   const auto [seen_by_target, seen_by_source] = scorer.evidenceEachWay(found.best.refined.transform);
   if (seen_by_target.contradicted_runs == 0 || seen_by_source.contradicted_runs == 0) return false;
   const FreeSpaceEvidence evidence = seen_by_target + seen_by_source;
-  what = std::to_string(static_cast<int>(std::lround(100 * evidence.fraction()))) +
-         " % of the contours it aligns, in " + std::to_string(evidence.contradicted_runs) + " stretches";
+  what = percent(evidence.fraction()) + " of the contours it aligns, in " + std::to_string(evidence.contradicted_runs) +
+         " stretches";
   return true;
 }
 
@@ -279,10 +282,9 @@ constexpr double kNearlyAsWell = 2.0 * kScoreTie;
 bool beamsSideWithRival(Judged &found, Scorer &scorer, std::string &what) {
   if (!found.rival || found.rival->score <= scorer.score(found.best) - kNearlyAsWell) return false;
   const double against_best = scorer.contradictedReturns(found.best.refined.transform);
-  if (!(against_best > kScoreTie)) return false;
+  if (!(against_best > kScoreTie)) return false;  // no rival's share can be lower by the tie
   const double against_rival = scorer.contradictedReturns(found.rival->refined.transform);
   if (!(against_best > against_rival + kScoreTie)) return false;
-  const auto percent = [](double share) { return std::to_string(static_cast<int>(std::lround(100 * share))) + " %"; };
   what = "it puts " + percent(against_best) + " of the scans' returns in the other's free space, the rival " +
          percent(against_rival);
   return true;
