@@ -83,8 +83,8 @@ void bindRegistration(py::module_ &m) {
           "alternatives",
           [](const odometry::MatchResult &r) {
             py::list motions;
-            for (const RejectedMotion &m : r.alternatives)
-              motions.append(py::make_tuple(matrixArray(m.transform), matrixArray(m.covariance)));
+            for (const RejectedMotion &motion : r.alternatives)
+              motions.append(py::make_tuple(matrixArray(motion.transform), matrixArray(motion.covariance)));
             return motions;
           },
           "contour methods, ambiguous: the distinct motions that fit the scans about as well, each a "

@@ -155,8 +155,8 @@ TEST(Decision, AWeaklySupportedMotionStandsOnlyWhereTheBeamsAgree) {
   simulation::World chairs = room;
   for (double x = -4.5; x < 6.0; x += 1.5)  // three rows of chairs, four legs each
     for (const double y : {-2.5, 1.5, 3.5})
-      for (const Eigen::Vector2d leg : {Eigen::Vector2d(-0.2, -0.2), Eigen::Vector2d(-0.2, 0.2),
-                                        Eigen::Vector2d(0.2, -0.2), Eigen::Vector2d(0.2, 0.2)})
+      for (const Eigen::Vector2d &leg : {Eigen::Vector2d(-0.2, -0.2), Eigen::Vector2d(-0.2, 0.2),
+                                         Eigen::Vector2d(0.2, -0.2), Eigen::Vector2d(0.2, 0.2)})
         chairs.addCircle(Eigen::Vector2d(x, y) + leg, 0.025);
   const Eigen::Isometry2d target = test::pose2d(0.0, -0.4, 10), source = test::pose2d(0.3, -0.3, 14);
   RegistrationParams params;
