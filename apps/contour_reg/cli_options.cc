@@ -33,6 +33,26 @@ void printReadReport(const io::ScanLog &log) {
                  log.report.reordered);
 }
 
+void addScanPairOptions(CLI::App &command, ScanPair &pair, const std::string &scan_help) {
+  command.add_option("input", pair.input, "CARMEN log, ROS bag or PCD folder")->required()->check(CLI::ExistingPath);
+  command.add_option("--scan", pair.scan, scan_help)->capture_default_str()->check(nonNegative());
+  command.add_option("--to", pair.to, "Target scan of the pair (default: the scan before)")->check(nonNegative());
+}
+
+void checkScanPair(const ScanPair &pair) {
+  if (pair.scan == 0 && pair.to < 0) throw CLI::ValidationError("--scan", "scan 0 has no scan before it: give --to");
+}
+
+bool readScanPair(const ScanPair &pair, const io::LogReadOptions &read, io::ScanLog &log) {
+  log = io::readLog(pair.input, read);
+  printReadReport(log);
+  const int count = static_cast<int>(log.entries.size());
+  if (pair.scan < count && pair.target() < count) return true;
+  std::fprintf(stderr, "error: --scan %d, --to %d: %s has scans 0..%d\n", pair.scan, pair.target(), pair.input.c_str(),
+               count - 1);
+  return false;
+}
+
 std::string beamsRead(const io::LogReadOptions &read) {
   return read.beam_step > 1 ? " (one beam in " + std::to_string(read.beam_step) + ")" : "";
 }

@@ -238,6 +238,23 @@ inline CLI::IsMember methodCheck() { return CLI::IsMember(odometry::methodNames(
 /// Prints the reader's warnings (skipped lines, the first few described) to stderr.
 void printReadReport(const io::ScanLog &log);
 
+/// One pair of scans of a log, by index in stamp order: the source `scan` onto the target `to`.
+struct ScanPair {
+  std::string input;
+  int scan = 1, to = -1;  ///< `to` < 0: the scan before `scan`
+  int target() const { return to >= 0 ? to : scan - 1; }
+};
+
+/// The input, --scan (`scan_help`) and --to options.
+void addScanPairOptions(CLI::App &command, ScanPair &pair, const std::string &scan_help);
+
+/// Throws CLI::ValidationError for scan 0 without --to: it has no scan before it.
+void checkScanPair(const ScanPair &pair);
+
+/// Reads the pair's log (its warnings to stderr, as printReadReport). False, with the error on
+/// stderr naming the log and its scans, when the log has no such scans.
+bool readScanPair(const ScanPair &pair, const io::LogReadOptions &read, io::ScanLog &log);
+
 /// " (one beam in N)" when the log was read with --beam-step N > 1, else "": for the headers of
 /// tables, so that saved output says which scans it measured.
 std::string beamsRead(const io::LogReadOptions &read);

@@ -16,8 +16,8 @@ namespace contour_reg::cli {
 namespace {
 
 struct DebugOptions {
-  std::string input, out;
-  int scan = 1, to = -1;
+  ScanPair pair;
+  std::string out;
   std::vector<std::string> methods;
   io::LogReadOptions read;
   MethodOptions method_options;
@@ -25,18 +25,12 @@ struct DebugOptions {
 
 int runDebug(const DebugOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  const io::ScanLog log = io::readLog(options.input, options.read);
-  printReadReport(log);
-  const int count = static_cast<int>(log.entries.size());
-  const int target = options.to >= 0 ? options.to : options.scan - 1;
-  if (options.scan >= count || target >= count) {
-    std::fprintf(stderr, "error: --scan %d, --to %d: %s has scans 0..%d\n", options.scan, target, options.input.c_str(),
-                 count - 1);
-    return 2;
-  }
+  io::ScanLog log;
+  if (!readScanPair(options.pair, options.read, log)) return 2;
   const odometry::MatcherSettings settings = options.method_options.settings();
   DebugDumper dumper(options.out, settings);
-  for (const std::string &file : dumper.dumpPair(log, std::size_t(target), std::size_t(options.scan), options.methods))
+  for (const std::string &file :
+       dumper.dumpPair(log, std::size_t(options.pair.target()), std::size_t(options.pair.scan), options.methods))
     std::printf("%s\n", file.c_str());
   return 0;
 }
@@ -46,21 +40,14 @@ int runDebug(const DebugOptions &options) {
 void addDebugCommand(CLI::App &app) {
   auto options = std::make_shared<DebugOptions>();
   CLI::App *command = app.add_subcommand("debug", "Debug images of a scan and of its registration to another scan");
-  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
-      ->required()
-      ->check(CLI::ExistingPath);
-  command->add_option("--scan", options->scan, "Scan to draw (the source of the pair; index in stamp order)")
-      ->capture_default_str()
-      ->check(nonNegative());
-  command->add_option("--to", options->to, "Target scan of the pair (default: the scan before)")->check(nonNegative());
+  addScanPairOptions(*command, options->pair, "Scan to draw (the source of the pair; index in stamp order)");
   command->add_option("--out", options->out, "Output folder")->required();
   command->add_option("--methods", options->methods, "Also draw these methods' alignments side by side")
       ->check(methodCheck());
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
   command->callback([options]() {
-    if (options->scan == 0 && options->to < 0)
-      throw CLI::ValidationError("--scan", "scan 0 has no scan before it: give --to");
+    checkScanPair(options->pair);
     validateMethodOptions(options->method_options);
     prepareOutputFolder("--out", options->out);
     runCommand([&] { return runDebug(*options); });

@@ -59,6 +59,7 @@ int main(int argc, char **argv) {
   contour_reg::cli::addOdometryCommand(app);
   contour_reg::cli::addEvaluateCommand(app);
   contour_reg::cli::addCompareCommand(app);
+  contour_reg::cli::addRegisterCommand(app);
   contour_reg::cli::addRelationsCommand(app);
   contour_reg::cli::addClosureCommand(app);
   contour_reg::cli::addDebugCommand(app);

@@ -2,7 +2,7 @@
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test_support.cmake)
 
 # Every subcommand has --help.
-foreach(command features simulate odometry evaluate compare relations closure debug)
+foreach(command features simulate odometry evaluate compare register relations closure debug)
   expect_run(0 ${command} --help)
 endforeach()
 
@@ -37,6 +37,23 @@ file(GLOB pictures ${WORK_DIR}/debug-map/pair_*.png)
 file(GLOB map_pictures ${WORK_DIR}/debug-map/pair_map*.png)
 if(NOT map_pictures OR NOT pictures STREQUAL map_pictures)
   message(FATAL_ERROR "odometry --local-map --debug-dir wrote ${pictures}, not pair_map<keyframe>_<scan>.png")
+endif()
+
+# register prints each method's answer for one pair as YAML. The bundled log's scans 0 and 1 lie
+# 0.25 m apart straight ahead (its ground truth): the contour method finds that within 1 cm and
+# 0.5 deg, with a covariance; ICP converges too and gives none.
+expect_run(0 register ${LOG} --scan 1 --methods contour icp)
+string(REGEX MATCH "- method: contour\n  status: converged\n  motion: {x_m: 0\\.2[45][0-9]+, y_m: -?0\\.00[0-9]+, yaw_deg: -?0\\.[0-4][0-9]+}\n  covariance: \\[[^]]+\\]\n" contour "${LAST_OUT}")
+if(NOT contour)
+  message(FATAL_ERROR "register: no converged contour answer within 1 cm / 0.5 deg of (0.25 m, 0, 0) in:\n${LAST_OUT}")
+endif()
+expect_match("${LAST_OUT}" "- method: icp\n  status: converged\n  motion: {x_m: [-0-9.]+, y_m: [-0-9.]+, yaw_deg: [-0-9.]+}\n  milliseconds: ")
+# Scan 90 lies in another room than scan 0: the contour method declines the pair, says why, and
+# prints no motion for it, only the one it weighed and declined.
+expect_run(0 register ${LOG} --scan 90 --to 0 --methods contour)
+expect_match("${LAST_OUT}" "- method: contour\n  status: low_overlap\n  reason: \"[^\"]+\"\n  declined: {x_m: ")
+if(LAST_OUT MATCHES "\n  (motion|covariance):")
+  message(FATAL_ERROR "register printed a motion or covariance for a declined pair:\n${LAST_OUT}")
 endif()
 
 # evaluate prints the paper's metric against the ground truth.
