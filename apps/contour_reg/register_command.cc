@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,8 @@ namespace {
 struct RegisterOptions {
   ScanPair pair;
   std::vector<std::string> methods{"contour"};
-  std::vector<double> guess;  // x m, y m, yaw deg; empty: no motion
+  std::vector<double> guess;  // x m, y m, yaw deg, in `frame`; empty: no motion
+  std::string frame = "robot";
   io::LogReadOptions read;
   MethodOptions method_options;
 };
@@ -66,6 +68,23 @@ void printResult(const std::string &method, const odometry::MatchResult &r) {
   std::printf("  milliseconds: %.3f\n", r.milliseconds);
 }
 
+// The laser-frame motions and covariances of `result` as the robot's, the laser at `mounting`.
+void inRobotFrame(odometry::MatchResult &result, const io::Pose2D &mounting) {
+  const auto motion = [&](const Eigen::Matrix3d &laser) {
+    return io::toMatrix(io::robotMotion(io::toPose(laser), mounting));
+  };
+  const auto covariance = [&](const Eigen::Matrix3d &laser_covariance, const Eigen::Matrix3d &laser) {
+    return io::robotCovariance(laser_covariance, io::toPose(laser), mounting);
+  };
+  result.covariance = covariance(result.covariance, result.transform);
+  result.transform = motion(result.transform);
+  if (result.rejected) result.rejected = motion(*result.rejected);
+  for (RejectedMotion &alternative : result.alternatives) {
+    alternative.covariance = covariance(alternative.covariance, alternative.transform);
+    alternative.transform = motion(alternative.transform);
+  }
+}
+
 int runRegister(const RegisterOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   io::ScanLog log;
@@ -73,18 +92,24 @@ int runRegister(const RegisterOptions &options) {
   const ScanPair &pair = options.pair;
   const LaserScan &source = log.entries[std::size_t(pair.scan)].scan,
                   &target = log.entries[std::size_t(pair.target())].scan;
-  const Eigen::Matrix3d guess =
-      options.guess.empty() ? Eigen::Matrix3d::Identity()
-                            : io::toMatrix({options.guess[0], options.guess[1], options.guess[2] * M_PI / 180.0});
+  // The registration runs in the laser's frame; with the log's mounting, the guess and the
+  // answers are the robot's.
+  const std::optional<io::Pose2D> mounting = options.frame == "robot" ? log.laser_pose : std::nullopt;
+  io::Pose2D guess;
+  if (!options.guess.empty()) guess = {options.guess[0], options.guess[1], options.guess[2] * M_PI / 180.0};
+  if (mounting) guess = io::laserMotion(guess, *mounting);
   std::printf("# scan %d (source, stamp %.6f s) onto scan %d (target, stamp %.6f s) of %s\n", pair.scan, source.stamp,
               pair.target(), target.stamp, pair.input.c_str());
   std::printf(
-      "# motion (of a method that converged): the source's laser pose in the target's laser frame; covariance: "
-      "row-major x m, y m, yaw rad\n");
+      "# motions and covariances in %s; motion: the source scan's pose in the target scan's frame (x m, y m, "
+      "yaw deg); covariance: row-major x m, y m, yaw rad\n",
+      odometry::frameDescription(mounting ? odometry::Frame::kRobot : odometry::Frame::kLaser, log).c_str());
   const odometry::MatcherSettings settings = options.method_options.settings();
   for (const std::string &method : options.methods) {
     std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, settings);
-    printResult(method, matcher->match(target, source, guess));
+    odometry::MatchResult result = matcher->match(target, source, io::toMatrix(guess));
+    if (mounting) inRobotFrame(result, *mounting);
+    printResult(method, result);
   }
   return 0;
 }
@@ -107,9 +132,10 @@ void addRegisterCommand(CLI::App &app) {
               if (!std::isfinite(value)) throw CLI::ValidationError("--guess", "X Y YAW must be finite numbers");
             options->guess = v;
           },
-          "Initial guess of the motion, source laser in the target laser's frame (m, m, deg; default: none)")
+          "Initial guess of the motion, in the frame of --frame (m, m, deg; default: none)")
       ->expected(3)
       ->type_name("X Y YAW");
+  addFrameOption(*command, options->frame);
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
   command->callback([options]() {

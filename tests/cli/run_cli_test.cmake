@@ -151,6 +151,12 @@ endforeach()
 if(percent_robot GREATER 1 OR percent_laser LESS 5)
   message(FATAL_ERROR "mounted.log: end-point error ${percent_robot} % as the robot's, ${percent_laser} % as the laser's")
 endif()
+# register answers as the robot's motion too: 0.25 m straight ahead (the ground truth); as the
+# laser's, the same step seen 20 deg turned, about 0.08 m to the right.
+expect_run(0 register ${WORK_DIR}/mounted.log --scan 1)
+expect_match("${LAST_OUT}" "  motion: {x_m: 0\\.2[45][0-9]+, y_m: -?0\\.00[0-9]+, yaw_deg: -?0\\.[0-4][0-9]+}")
+expect_run(0 register ${WORK_DIR}/mounted.log --scan 1 --frame laser)
+expect_match("${LAST_OUT}" "  motion: {x_m: 0\\.23[0-9]+, y_m: -0\\.0[78][0-9]+, yaw_deg: -?0\\.[0-4][0-9]+}")
 # The wheel odometry left out, a guess from it is no guess at all: the tool says so.
 expect_run(0 odometry ${LOG} --guess odom --no-wheel-odometry --output ${WORK_DIR}/no-wheels.tum)
 expect_match("${LAST_ERR}" "warning: --guess odom, but .*L-hokuyo-2hz.clf has no wheel odometry")
