@@ -81,12 +81,12 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   addLaserPoseOption(command, options.laser_pose, "over what the log says");
 }
 
-/// --frame: the frame a trajectory is written in.
-inline void addFrameOption(CLI::App &command, std::string &frame) {
+/// --frame: the frame `what` (a trajectory, motions) is given in.
+inline void addFrameOption(CLI::App &command, std::string &frame, const std::string &what = "the trajectory") {
   command
-      .add_option("--frame", frame,
-                  "Frame of the trajectory: robot (base_link, when the log or --laser-pose gives the laser's "
-                  "mounting) or laser")
+      .add_option(
+          "--frame", frame,
+          "Frame of " + what + ": robot (base_link, when the log or --laser-pose gives the laser's mounting) or laser")
       ->check(CLI::IsMember(odometry::frameNames()))
       ->capture_default_str();
 }

@@ -135,7 +135,7 @@ void addRegisterCommand(CLI::App &app) {
           "Initial guess of the motion, in the frame of --frame (m, m, deg; default: none)")
       ->expected(3)
       ->type_name("X Y YAW");
-  addFrameOption(*command, options->frame);
+  addFrameOption(*command, options->frame, "the motions, covariances and guess");
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
   command->callback([options]() {

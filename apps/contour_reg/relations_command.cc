@@ -401,7 +401,7 @@ void addRelationsCommand(CLI::App &app) {
       ->capture_default_str()
       ->check(positive());
   addReadOptions(*command, options->read);
-  addFrameOption(*command, options->frame);
+  addFrameOption(*command, options->frame, "the motions and covariances");
   addMethodOptions(*command, options->method_options);
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
   command
