@@ -43,7 +43,7 @@ struct RelationsOptions {
 };
 
 // A scan pair to register and its reference motion (the second scan's pose in the first's frame).
-struct ScanPair {
+struct ReferencedPair {
   std::size_t first = 0, second = 0;
   io::Relation reference;
 };
@@ -129,16 +129,16 @@ constexpr double kStampMatch = 0.01;
 
 // The scan pairs to register against their reference motions, and how the report names them.
 struct References {
-  std::vector<ScanPair> pairs;
+  std::vector<ReferencedPair> pairs;
   std::string kind;          // "relations with |t2 - t1| <= 5.0 s", "pairs of scans 1 apart, referenced by ..."
   std::string none;          // why there is no pair, when there is none
   std::size_t left_out = 0;  // relations short enough without a scan at both stamps
 };
 
 // Scan k and scan k + gap for every k where `poses` (one per log entry) has both poses.
-std::vector<ScanPair> pairsFromPoses(const io::ScanLog &log, const std::vector<std::optional<io::Pose2D>> &poses,
-                                     std::size_t gap) {
-  std::vector<ScanPair> pairs;
+std::vector<ReferencedPair> pairsFromPoses(const io::ScanLog &log, const std::vector<std::optional<io::Pose2D>> &poses,
+                                           std::size_t gap) {
+  std::vector<ReferencedPair> pairs;
   for (std::size_t k = 0; k + gap < log.entries.size(); ++k) {
     const std::optional<io::Pose2D> &a = poses[k], &b = poses[k + gap];
     if (a && b)
@@ -200,7 +200,7 @@ int runRelations(const RelationsOptions &options) {
   const io::ScanLog log = io::readLog(options.input, options.read);
   printReadReport(log);
   References references = referencePairs(log, options);
-  std::vector<ScanPair> &pairs = references.pairs;
+  std::vector<ReferencedPair> &pairs = references.pairs;
   if (pairs.empty()) {  // references of another run: say so rather than score nothing
     std::fprintf(stderr, "error: no scan pair: %s\n", references.none.c_str());
     return 1;
@@ -253,7 +253,7 @@ int runRelations(const RelationsOptions &options) {
     double error_sum = 0.0;
     std::vector<double> ms;
     std::vector<double> nees;  // of the converged pairs with a covariance
-    for (const ScanPair &pair : pairs) {
+    for (const ReferencedPair &pair : pairs) {
       progress(ms.size(), pairs.size());
       const io::Relation &r = pair.reference;
       const LaserScan &first = log.entries[pair.first].scan, &second = log.entries[pair.second].scan;
