@@ -10,6 +10,7 @@
 
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/registration.h"
+#include "contour_reg/io/pose2d.h"
 
 namespace contour_reg::cli {
 
@@ -51,6 +52,22 @@ bool readScanPair(const ScanPair &pair, const io::LogReadOptions &read, io::Scan
   std::fprintf(stderr, "error: --scan %d, --to %d: %s has scans 0..%d\n", pair.scan, pair.target(), pair.input.c_str(),
                count - 1);
   return false;
+}
+
+void toRobotFrame(odometry::MatchResult &result, const io::Pose2D &mounting) {
+  const auto motion = [&](const Eigen::Matrix3d &laser) {
+    return io::toMatrix(io::robotMotion(io::toPose(laser), mounting));
+  };
+  const auto covariance = [&](const Eigen::Matrix3d &laser_covariance, const Eigen::Matrix3d &laser) {
+    return io::robotCovariance(laser_covariance, io::toPose(laser), mounting);
+  };
+  result.covariance = covariance(result.covariance, result.transform);
+  result.transform = motion(result.transform);
+  if (result.rejected) result.rejected = motion(*result.rejected);
+  for (RejectedMotion &alternative : result.alternatives) {
+    alternative.covariance = covariance(alternative.covariance, alternative.transform);
+    alternative.transform = motion(alternative.transform);
+  }
 }
 
 std::string beamsRead(const io::LogReadOptions &read) {

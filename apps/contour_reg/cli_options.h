@@ -255,6 +255,10 @@ void checkScanPair(const ScanPair &pair);
 /// stderr naming the log and its scans, when the log has no such scans.
 bool readScanPair(const ScanPair &pair, const io::LogReadOptions &read, io::ScanLog &log);
 
+/// The motions and covariances of `result`, found in the laser's frame (the transform, the
+/// rejected motion, the alternatives), as the robot's, the laser mounted at `mounting`.
+void toRobotFrame(odometry::MatchResult &result, const io::Pose2D &mounting);
+
 /// " (one beam in N)" when the log was read with --beam-step N > 1, else "": for the headers of
 /// tables, so that saved output says which scans it measured.
 std::string beamsRead(const io::LogReadOptions &read);

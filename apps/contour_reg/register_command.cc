@@ -68,23 +68,6 @@ void printResult(const std::string &method, const odometry::MatchResult &r) {
   std::printf("  milliseconds: %.3f\n", r.milliseconds);
 }
 
-// The laser-frame motions and covariances of `result` as the robot's, the laser at `mounting`.
-void inRobotFrame(odometry::MatchResult &result, const io::Pose2D &mounting) {
-  const auto motion = [&](const Eigen::Matrix3d &laser) {
-    return io::toMatrix(io::robotMotion(io::toPose(laser), mounting));
-  };
-  const auto covariance = [&](const Eigen::Matrix3d &laser_covariance, const Eigen::Matrix3d &laser) {
-    return io::robotCovariance(laser_covariance, io::toPose(laser), mounting);
-  };
-  result.covariance = covariance(result.covariance, result.transform);
-  result.transform = motion(result.transform);
-  if (result.rejected) result.rejected = motion(*result.rejected);
-  for (RejectedMotion &alternative : result.alternatives) {
-    alternative.covariance = covariance(alternative.covariance, alternative.transform);
-    alternative.transform = motion(alternative.transform);
-  }
-}
-
 int runRegister(const RegisterOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   io::ScanLog log;
@@ -108,7 +91,7 @@ int runRegister(const RegisterOptions &options) {
   for (const std::string &method : options.methods) {
     std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, settings);
     odometry::MatchResult result = matcher->match(target, source, io::toMatrix(guess));
-    if (mounting) inRobotFrame(result, *mounting);
+    if (mounting) toRobotFrame(result, *mounting);
     printResult(method, result);
   }
   return 0;

@@ -261,13 +261,7 @@ int runRelations(const RelationsOptions &options) {
           matcher->match(first, second, Eigen::Matrix3d::Identity(), sweep(pair.first), sweep(pair.second));
       const Eigen::Matrix3d laser_transform = match.transform;  // in the scans' frame
       // The references are the robot's motions.
-      if (robot_frame) {
-        const io::Pose2D laser_motion = io::toPose(laser_transform);
-        match.covariance = io::robotCovariance(match.covariance, laser_motion, *log.laser_pose);
-        match.transform = io::toMatrix(io::robotMotion(laser_motion, *log.laser_pose));
-        if (match.rejected)
-          match.rejected = io::toMatrix(io::robotMotion(io::toPose(*match.rejected), *log.laser_pose));
-      }
+      if (robot_frame) toRobotFrame(match, *log.laser_pose);
       ms.push_back(match.milliseconds);
       const Eigen::Matrix3d &t = match.transform;
       const double yaw = yawOf(t);
