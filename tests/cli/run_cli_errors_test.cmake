@@ -117,6 +117,16 @@ expect_run(1 relations ${LOG} --relations ${WORK_DIR}/other.relations --methods 
 expect_match("${LAST_ERR}" "no scan pair: none of the 2 relations has a scan of .*L-hokuyo-2hz.clf at both stamps")
 expect_run(1 relations ${LOG} --gt ${WORK_DIR}/other.gt.tum --methods contour)
 expect_match("${LAST_ERR}" "no scan pair: .*other.gt.tum has no pose at the stamps of scans 1 apart")
+# A ground truth gives one pose per stamp: a relations file given as one (8 numbers a line too,
+# its first stamps repeated with other motions) is refused, as evaluate refuses it.
+set(twice "")
+foreach(line IN LISTS gt_lines)
+  string(REGEX REPLACE "^([0-9.]+) [-0-9.e]+" "\\1 100" moved "${line}")  # the same stamp, another pose
+  string(APPEND twice "${line}\n${moved}\n")
+endforeach()
+file(WRITE ${WORK_DIR}/twice.gt.tum "${twice}")
+expect_run(1 relations ${LOG} --gt ${WORK_DIR}/twice.gt.tum --methods contour)
+expect_match("${LAST_ERR}" "twice.gt.tum: 99 of its 198 stamps are no later than the one before: they do not tell its poses apart")
 
 # closure needs three scans, and checks its options before any work.
 file(STRINGS ${LOG} laser_lines REGEX "^(FLASER|ROBOTLASER1) ")
