@@ -57,6 +57,22 @@ inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &las
       ->type_name("X Y YAW");
 }
 
+/// An option `name` X Y YAW: a motion, source to target (m, m, deg; kept in radians).
+inline CLI::Option *addMotionOption(CLI::App &command, const std::string &name, std::optional<io::Pose2D> &motion,
+                                    const std::string &help) {
+  return command
+      .add_option_function<std::vector<double>>(
+          name,
+          [&motion, name](const std::vector<double> &v) {
+            for (double value : v)
+              if (!std::isfinite(value)) throw CLI::ValidationError(name, "X Y YAW must be finite numbers");
+            motion = io::Pose2D{v[0], v[1], v[2] * M_PI / 180.0};
+          },
+          help)
+      ->expected(3)
+      ->type_name("X Y YAW");
+}
+
 /// --max-range, --scan-topic, --odom-topic, --no-wheel-odometry, --scan-period, --beam-step, --laser-pose.
 inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m, > 0)")

@@ -8,6 +8,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "contour_reg/drawing/debug_images.h"
+#include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
 #include "debug_dump.h"
 
@@ -19,6 +20,8 @@ struct DebugOptions {
   ScanPair pair;
   std::string out;
   std::vector<std::string> methods;
+  PairMotions motions;  // in `frame`
+  std::string frame = "laser";
   io::LogReadOptions read;
   MethodOptions method_options;
 };
@@ -29,8 +32,13 @@ int runDebug(const DebugOptions &options) {
   if (!readScanPair(options.pair, options.read, log)) return 2;
   const odometry::MatcherSettings settings = options.method_options.settings();
   DebugDumper dumper(options.out, settings);
-  for (const std::string &file :
-       dumper.dumpPair(log, std::size_t(options.pair.target()), std::size_t(options.pair.scan), options.methods))
+  // The pictures are the laser's; with the log's mounting, motions given in the robot's frame are turned into it.
+  PairMotions motions = options.motions;
+  if (options.frame == "robot" && log.laser_pose)
+    for (std::optional<io::Pose2D> *motion : {&motions.guess, &motions.reference})
+      if (*motion) *motion = io::laserMotion(**motion, *log.laser_pose);
+  for (const std::string &file : dumper.dumpPair(log, std::size_t(options.pair.target()),
+                                                 std::size_t(options.pair.scan), options.methods, motions))
     std::printf("%s\n", file.c_str());
   return 0;
 }
@@ -44,6 +52,14 @@ void addDebugCommand(CLI::App &app) {
   command->add_option("--out", options->out, "Output folder")->required();
   command->add_option("--methods", options->methods, "Also draw these methods' alignments side by side")
       ->check(methodCheck());
+  addMotionOption(*command, "--guess", options->motions.guess,
+                  "Initial guess of the motion, in the frame of --frame (m, m, deg; default: none): every "
+                  "registration drawn starts from it");
+  addMotionOption(*command, "--reference", options->motions.reference,
+                  "The pair's true motion, when known (a ground truth's), in the frame of --frame (m, m, deg): "
+                  "methods_M_N.png shows the source moved by it first, and how far each method's motion lies from "
+                  "it (without --methods, the contour method's)");
+  addFrameOption(*command, options->frame, "--guess and --reference (the pictures are the laser's)");
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
   command->callback([options]() {

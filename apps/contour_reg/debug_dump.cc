@@ -12,26 +12,29 @@
 namespace contour_reg::cli {
 
 std::vector<std::string> DebugDumper::dumpPair(const io::ScanLog &log, std::size_t target, std::size_t source,
-                                               const std::vector<std::string> &methods) const {
+                                               const std::vector<std::string> &methods,
+                                               const PairMotions &motions) const {
   return dump(log, log.entries[target].scan, "scan " + std::to_string(target),
-              std::to_string(target) + "_" + std::to_string(source), source, methods);
+              std::to_string(target) + "_" + std::to_string(source), source, methods, motions);
 }
 
 std::vector<std::string> DebugDumper::dumpMapPair(const io::ScanLog &log, const LaserScan &map, std::size_t keyframe,
                                                   std::size_t source) const {
   return dump(log, map, "the local map at scan " + std::to_string(keyframe),
-              "map" + std::to_string(keyframe) + "_" + std::to_string(source), source, {});
+              "map" + std::to_string(keyframe) + "_" + std::to_string(source), source, {}, {});
 }
 
 std::vector<std::string> DebugDumper::dump(const io::ScanLog &log, const LaserScan &a, const std::string &target_name,
                                            const std::string &stem, std::size_t source,
-                                           const std::vector<std::string> &methods) const {
+                                           const std::vector<std::string> &methods, const PairMotions &motions) const {
   namespace fs = std::filesystem;
   const LaserScan &b = log.entries[source].scan;
   const ContourFeatures fa = extractContourFeatures(a, settings_.contour),
                         fb = extractContourFeatures(b, settings_.contour);
   std::mt19937 rng(42);  // ContourRegistration's default seed
-  const RegistrationResult result = registerContours(fb, fa, settings_.registration, rng);
+  const Eigen::Matrix3d guess = io::toMatrix(motions.guess.value_or(io::Pose2D{}));
+  const RegistrationResult result =
+      registerContours(fb, fa, settings_.registration, rng, motions.guess ? &guess : nullptr);
   std::vector<std::string> written{(fs::path(folder_) / ("scan_" + std::to_string(source) + ".png")).string(),
                                    (fs::path(folder_) / ("pair_" + stem + ".png")).string()};
   char title[160];
@@ -52,15 +55,19 @@ std::vector<std::string> DebugDumper::dump(const io::ScanLog &log, const LaserSc
     std::snprintf(title, sizeof title, "scan %zu raw and deskewed", source);
     drawing::writeImage(written.back(), drawing::drawDeskew(b, motion, title));
   }
-  if (!methods.empty()) {
+  const std::vector<std::string> drawn =
+      methods.empty() && motions.reference ? std::vector<std::string>{"contour"} : methods;
+  if (!drawn.empty()) {
     std::vector<drawing::Alignment> alignments;
-    for (const std::string &method : methods) {
+    for (const std::string &method : drawn) {
       auto matcher = odometry::makeScanMatcher(method, settings_);
-      const odometry::MatchResult match = matcher->match(a, b);
+      const odometry::MatchResult match = matcher->match(a, b, guess);
       alignments.push_back({method, match.transform, match.converged, match.reason});
     }
+    std::optional<Eigen::Matrix3d> reference;
+    if (motions.reference) reference = io::toMatrix(*motions.reference);
     written.push_back((fs::path(folder_) / ("methods_" + stem + ".png")).string());
-    drawing::writeImage(written.back(), drawing::drawAlignments(a, b, alignments));
+    drawing::writeImage(written.back(), drawing::drawAlignments(a, b, alignments, 600, reference));
   }
   return written;
 }

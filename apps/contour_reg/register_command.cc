@@ -19,7 +19,7 @@ namespace {
 struct RegisterOptions {
   ScanPair pair;
   std::vector<std::string> methods{"contour"};
-  std::vector<double> guess;  // x m, y m, yaw deg, in `frame`; empty: no motion
+  std::optional<io::Pose2D> guess;  // in `frame`; none: no motion
   std::string frame = "robot";
   io::LogReadOptions read;
   MethodOptions method_options;
@@ -78,8 +78,7 @@ int runRegister(const RegisterOptions &options) {
   // The registration runs in the laser's frame; with the log's mounting, the guess and the
   // answers are the robot's.
   const std::optional<io::Pose2D> mounting = options.frame == "robot" ? log.laser_pose : std::nullopt;
-  io::Pose2D guess;
-  if (!options.guess.empty()) guess = {options.guess[0], options.guess[1], options.guess[2] * M_PI / 180.0};
+  io::Pose2D guess = options.guess.value_or(io::Pose2D{});
   if (mounting) guess = io::laserMotion(guess, *mounting);
   std::printf("# scan %d (source, stamp %.6f s) onto scan %d (target, stamp %.6f s) of %s\n", pair.scan, source.stamp,
               pair.target(), target.stamp, pair.input.c_str());
@@ -107,17 +106,8 @@ void addRegisterCommand(CLI::App &app) {
   command->add_option("--methods", options->methods, "Methods to run, each on the same pair")
       ->capture_default_str()
       ->check(methodCheck());
-  command
-      ->add_option_function<std::vector<double>>(
-          "--guess",
-          [options](const std::vector<double> &v) {
-            for (double value : v)
-              if (!std::isfinite(value)) throw CLI::ValidationError("--guess", "X Y YAW must be finite numbers");
-            options->guess = v;
-          },
-          "Initial guess of the motion, in the frame of --frame (m, m, deg; default: none)")
-      ->expected(3)
-      ->type_name("X Y YAW");
+  addMotionOption(*command, "--guess", options->guess,
+                  "Initial guess of the motion, in the frame of --frame (m, m, deg; default: none)");
   addFrameOption(*command, options->frame, "the motions, covariances and guess");
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);

@@ -128,6 +128,11 @@ foreach(file scan_30.png pair_29_30.png)
     message(FATAL_ERROR "debug did not write ${file}")
   endif()
 endforeach()
+# With the pair's true motion, and from a guess, it draws the contour method's alignment beside it.
+expect_run(0 debug ${LOG} --scan 30 --reference 0.2 0 1 --guess 0.1 0 0 --out ${WORK_DIR}/pictures-reference)
+if(NOT EXISTS ${WORK_DIR}/pictures-reference/methods_29_30.png)
+  message(FATAL_ERROR "debug --reference did not write methods_29_30.png")
+endif()
 
 # experiment, reduced: one path, one rate, two arrivals; the table carries the paper's row.
 expect_run(0 experiment --paths L --rates 5 --arrivals 2 --methods contour icp --out ${WORK_DIR}/experiment)

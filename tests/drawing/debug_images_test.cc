@@ -97,6 +97,21 @@ TEST(DebugImages, PairAndAlignmentImagesAreDrawn) {
   // The failure and its reason are written in the band, not over the scans.
   EXPECT_GT(countColour(sides(cv::Rect(500, 0, 500, band)), Palette::warning()), 100);
   EXPECT_EQ(countColour(sides(cv::Rect(0, band, 1000, 500)), Palette::warning()), 0);
+
+  // With the pair's true motion, a panel of the source moved by it comes first, on the same
+  // view: where the result is the true motion, the two panels' scans are drawn alike.
+  const std::vector<Alignment> contour{{"contour", result.transform, true, ""}};
+  const cv::Mat truth = drawAlignments(a, b, contour, 500, result.transform);
+  ASSERT_EQ(truth.cols, 1000);
+  const auto scans = [&](const cv::Mat &image, int panel) {
+    return image(cv::Rect(panel * 500 + 1, band, 499, 440));  // above the legend
+  };
+  EXPECT_EQ(cv::norm(scans(truth, 0), scans(truth, 1), cv::NORM_L1), 0.0);
+  Eigen::Matrix3d elsewhere = result.transform;
+  elsewhere(0, 2) += 1.0;
+  const cv::Mat other = drawAlignments(a, b, contour, 500, elsewhere);
+  EXPECT_GT(cv::norm(scans(other, 0), scans(other, 1), cv::NORM_L1), 0.0);
+  EXPECT_GT(countColour(scans(other, 0), Palette::source()), 100);
 }
 
 // Two scans of a corridor with a door recess every 3 m, closed 9 m ahead: the target at the

@@ -346,8 +346,11 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
   return image;
 }
 
-cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const std::vector<Alignment> &alignments,
-                       int panel_width) {
+cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const std::vector<Alignment> &given,
+                       int panel_width, const std::optional<Eigen::Matrix3d> &reference) {
+  std::vector<Alignment> alignments;
+  if (reference) alignments.push_back({"reference", *reference, true, ""});
+  alignments.insert(alignments.end(), given.begin(), given.end());
   const int n = std::max<int>(1, static_cast<int>(alignments.size())), band = 110;
   cv::Mat image(band + panel_width, panel_width * n, CV_8UC3, kWhite);
   const auto target_points = finitePoints(target, Eigen::Matrix3d::Identity());
@@ -369,11 +372,21 @@ cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const s
     decorate(panel, view);
     const io::Pose2D pose = io::toPose(a.transform);
     char line[160];
-    std::snprintf(line, sizeof line, "%s: %s", a.method.c_str(), a.converged ? "converged" : "NOT CONVERGED");
+    std::snprintf(line, sizeof line, "%s: %s", a.method.c_str(),
+                  reference && k == 0 ? "the pair's true motion"
+                  : a.converged       ? "converged"
+                                      : "NOT CONVERGED");
     text(top, line, {12, 26}, 0.65, a.converged ? kBlack : Palette::warning());
     std::snprintf(line, sizeof line, "x %.3f m, y %.3f m, yaw %.2f deg", pose.x, pose.y, pose.yaw * 180 / M_PI);
     text(top, line, {12, 50}, 0.5);
     if (!a.converged) wrapped(top, a.reason, {12, 72}, 60, 2, Palette::warning());
+    if (reference && k > 0 && a.converged) {
+      const io::Pose2D truth = io::toPose(*reference);
+      std::snprintf(line, sizeof line, "%.3f m, %.2f deg from the reference",
+                    std::hypot(pose.x - truth.x, pose.y - truth.y),
+                    std::abs(std::remainder(pose.yaw - truth.yaw, 2.0 * M_PI)) * 180 / M_PI);
+      text(top, line, {12, 72}, 0.5);
+    }
     if (k > 0) cv::line(image, {k * panel_width, 0}, {k * panel_width, band + panel_width}, kBlack, 1);
     legend(panel, {{"target scan", Palette::target()}, {"source moved by " + a.method, Palette::source()}},
            {12, panel_width - 50});

@@ -6,6 +6,7 @@
 /// alignment by one or more methods), and trajectories against ground truth.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -71,7 +72,10 @@ cv::Mat drawPair(const LaserScan &target, const LaserScan &source, const Contour
                  int width = 1600);
 
 /// Overlays of the source moved onto the target by several methods, side by side.
-/// Each entry: method name, source-to-target transform, converged.
+/// Each entry: method name, source-to-target transform, converged. With `reference` (the
+/// pair's true motion, source to target, when known: a ground truth's), the first panel shows
+/// the source moved by it, and each converged method's band says how far its motion lies
+/// from it (m between the translations, deg between the headings).
 struct Alignment {
   std::string method;
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();
@@ -79,7 +83,7 @@ struct Alignment {
   std::string reason;  ///< why not, when not converged
 };
 cv::Mat drawAlignments(const LaserScan &target, const LaserScan &source, const std::vector<Alignment> &alignments,
-                       int panel_width = 600);
+                       int panel_width = 600, const std::optional<Eigen::Matrix3d> &reference = std::nullopt);
 
 /// Trajectories (method name -> trajectory, each in Palette::method's colour) under the
 /// ground truth (black, drawn last so that it stays visible), each re-anchored at the ground
