@@ -19,9 +19,9 @@ std::vector<std::string> DebugDumper::dumpPair(const io::ScanLog &log, std::size
 }
 
 std::vector<std::string> DebugDumper::dumpMapPair(const io::ScanLog &log, const LaserScan &map, std::size_t keyframe,
-                                                  std::size_t source) const {
+                                                  std::size_t source, const PairMotions &motions) const {
   return dump(log, map, "the local map at scan " + std::to_string(keyframe),
-              "map" + std::to_string(keyframe) + "_" + std::to_string(source), source, {}, {});
+              "map" + std::to_string(keyframe) + "_" + std::to_string(source), source, {}, motions);
 }
 
 std::vector<std::string> DebugDumper::dump(const io::ScanLog &log, const LaserScan &a, const std::string &target_name,

@@ -33,7 +33,7 @@ class DebugDumper {
   /// The same for `source` registered against the local map drawn at keyframe `keyframe`:
   /// pair_map<keyframe>_<source>.png shows `map` as the target.
   std::vector<std::string> dumpMapPair(const io::ScanLog &log, const LaserScan &map, std::size_t keyframe,
-                                       std::size_t source) const;
+                                       std::size_t source, const PairMotions &motions = {}) const;
 
  private:
   // `a` is the target, named `target_name`, `stem` names the pair's files.

@@ -7,6 +7,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
 #include "contour_reg/odometry/odometry.h"
@@ -67,12 +68,13 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   if (!options.debug_dir.empty()) {
     dumper = std::make_unique<DebugDumper>(options.debug_dir, options.methods.settings());
     run_options.on_match = [&](std::size_t reference, std::size_t k, const LaserScan &target,
-                               const odometry::MatchResult &match) {
+                               const odometry::MatchResult &match, const Eigen::Matrix3d &guess) {
       if (!match.converged || (options.debug_every > 0 && k % options.debug_every == 0)) {
+        const PairMotions from_guess{io::toPose(guess), std::nullopt};
         if (options.local_map > 0)
-          dumper->dumpMapPair(log, target, reference, k);
+          dumper->dumpMapPair(log, target, reference, k, from_guess);
         else
-          dumper->dumpPair(log, reference, k);
+          dumper->dumpPair(log, reference, k, {}, from_guess);
       }
     };
   }

@@ -240,6 +240,32 @@ TEST(Odometry, DeskewingIsOnByDefaultAndLeavesStoppedScansAlone) {
   }
 }
 
+// Each registration is reported with the guess it started from (debug pictures redraw the
+// pair from it): the wheels' motion over the step when they are the guess, no motion for the
+// zero guess.
+TEST(Odometry, EachRegistrationIsReportedWithTheGuessItStartedFrom) {
+  Sequence s = roomSequence(8);
+  addWheels(s, 0.0);
+  auto matcher = makeScanMatcher("contour");
+  for (const GuessSource source : {GuessSource::kOdometry, GuessSource::kZero}) {
+    OdometryOptions options;
+    options.guess = source;
+    std::vector<std::size_t> reported;
+    options.on_match = [&](std::size_t reference, std::size_t k, const LaserScan &, const MatchResult &,
+                           const Eigen::Matrix3d &guess) {
+      reported.push_back(k);
+      const io::Pose2D expected =
+          source == GuessSource::kOdometry ? io::between(s.truth[reference].pose, s.truth[k].pose) : io::Pose2D{};
+      const io::Pose2D started = io::toPose(guess);
+      EXPECT_NEAR(started.x, expected.x, 1e-9) << "scan " << k;
+      EXPECT_NEAR(started.y, expected.y, 1e-9) << "scan " << k;
+      EXPECT_NEAR(started.yaw, expected.yaw, 1e-9) << "scan " << k;
+    };
+    runOdometry(s.log, *matcher, options);
+    EXPECT_EQ(reported.size(), s.log.entries.size() - 1);
+  }
+}
+
 // The office's L path, stop and go, with the LIDAR mounted at `laser_pose` on the robot; wheel
 // odometry (2 % noise) as the guess. The run in `frame`, and its truth (the robot's poses).
 struct MountedRun {

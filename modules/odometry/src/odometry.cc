@@ -422,7 +422,7 @@ OdometryRun runOdometry(const io::ScanLog &log, ScanMatcher &matcher, const Odom
       match.reason = "converged, but the scans leave a direction unconstrained";
     }
     ++run.stats.registrations;
-    if (options.on_match) options.on_match(reference, k, target, match);
+    if (options.on_match) options.on_match(reference, k, target, match, toMatrix(guess));
     run.stats.milliseconds.push_back(match.milliseconds);
     io::Pose2D pose;
     if (match.converged) {

@@ -78,8 +78,10 @@ struct OdometryOptions {
   /// Called after every scan with (scans done, scans in all).
   std::function<void(std::size_t, std::size_t)> progress;
   /// Called after every registration with (reference scan index, scan index, the scan it was
-  /// registered against: the reference scan or the local map drawn at it, result).
-  std::function<void(std::size_t, std::size_t, const LaserScan &, const MatchResult &)> on_match;
+  /// registered against: the reference scan or the local map drawn at it, result, the guess it
+  /// started from, source to target).
+  std::function<void(std::size_t, std::size_t, const LaserScan &, const MatchResult &, const Eigen::Matrix3d &)>
+      on_match;
 };
 
 struct OdometryStats {
