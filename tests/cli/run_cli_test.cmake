@@ -133,6 +133,10 @@ expect_run(0 debug ${LOG} --scan 30 --reference 0.2 0 1 --guess 0.1 0 0 --out ${
 if(NOT EXISTS ${WORK_DIR}/pictures-reference/methods_29_30.png)
   message(FATAL_ERROR "debug --reference did not write methods_29_30.png")
 endif()
+expect_run(0 debug ${LOG} --scan 30 --gt ${GT} --out ${WORK_DIR}/pictures-gt)
+if(NOT EXISTS ${WORK_DIR}/pictures-gt/methods_29_30.png)
+  message(FATAL_ERROR "debug --gt did not write methods_29_30.png")
+endif()
 
 # experiment, reduced: one path, one rate, two arrivals; the table carries the paper's row.
 expect_run(0 experiment --paths L --rates 5 --arrivals 2 --methods contour icp --out ${WORK_DIR}/experiment)
