@@ -11,6 +11,7 @@
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/registration.h"
 #include "contour_reg/io/pose2d.h"
+#include "contour_reg/io/trajectory.h"
 
 namespace contour_reg::cli {
 
@@ -79,6 +80,19 @@ std::string stampsDoNotIncrease(std::size_t count, std::size_t poses, const char
       "%zu of its %zu stamps are no later than the one before: they do not tell its poses apart, and no "
       "%smetric is given",
       count, poses, which);
+}
+
+std::optional<std::vector<std::optional<io::Pose2D>>> groundTruthAtScans(const std::string &path,
+                                                                         const io::ScanLog &log, std::string &why) {
+  const io::Trajectory truth = io::readTum(path);
+  if (const std::size_t repeated = evaluation::nonIncreasingStamps(truth); repeated > 0) {
+    why = path + ": " + stampsDoNotIncrease(repeated, truth.size(), "");
+    return std::nullopt;
+  }
+  std::vector<std::optional<io::Pose2D>> poses;
+  poses.reserve(log.entries.size());
+  for (const io::LogEntry &entry : log.entries) poses.push_back(evaluation::poseAt(truth, entry.scan.stamp));
+  return poses;
 }
 
 void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, const io::LogReadOptions &read) {

@@ -38,15 +38,21 @@ inline std::string logStem(const std::string &path) {
   return p.filename().string();
 }
 
+/// The pose X Y YAW (m, m, deg) that option `name` was given, yaw in radians; throws
+/// CLI::ValidationError naming the option unless all three are finite.
+inline io::Pose2D poseOption(const std::string &name, const std::vector<double> &v) {
+  for (double value : v)
+    if (!std::isfinite(value)) throw CLI::ValidationError(name, "X Y YAW must be finite numbers");
+  return {v[0], v[1], v[2] * M_PI / 180.0};
+}
+
 /// --laser-pose X Y YAW: the laser's pose on the robot (m, m, deg), `what` said of it in the help.
 inline void addLaserPoseOption(CLI::App &command, std::optional<io::Pose2D> &laser_pose, const std::string &what) {
   command
       .add_option_function<std::vector<double>>(
           "--laser-pose",
           [&laser_pose](const std::vector<double> &v) {
-            for (double value : v)
-              if (!std::isfinite(value)) throw CLI::ValidationError("--laser-pose", "X Y YAW must be finite numbers");
-            const io::Pose2D mounting{v[0], v[1], v[2] * M_PI / 180.0};
+            const io::Pose2D mounting = poseOption("--laser-pose", v);
             if (!io::isMounting(mounting))
               throw CLI::ValidationError("--laser-pose",
                                          "X and Y must lie within 100 m of the robot, YAW within 360 deg");
@@ -62,13 +68,7 @@ inline CLI::Option *addMotionOption(CLI::App &command, const std::string &name, 
                                     const std::string &help) {
   return command
       .add_option_function<std::vector<double>>(
-          name,
-          [&motion, name](const std::vector<double> &v) {
-            for (double value : v)
-              if (!std::isfinite(value)) throw CLI::ValidationError(name, "X Y YAW must be finite numbers");
-            motion = io::Pose2D{v[0], v[1], v[2] * M_PI / 180.0};
-          },
-          help)
+          name, [&motion, name](const std::vector<double> &v) { motion = poseOption(name, v); }, help)
       ->expected(3)
       ->type_name("X Y YAW");
 }
@@ -297,6 +297,13 @@ void warnOfMissingOdometry(const io::ScanLog &log, const std::string &guess, con
 /// Why a trajectory whose `count` of `poses` stamps are no later than the one before gets no
 /// metric (evaluation::nonIncreasingStamps; `which`: "" or "ground-truth "), to follow "FILE: ".
 std::string stampsDoNotIncrease(std::size_t count, std::size_t poses, const char *which);
+
+/// The TUM ground truth `path`'s poses at the stamps of `log`'s scans, interpolated as
+/// `evaluate` does (evaluation::poseAt; none where it has no pose). None, with `why` ("PATH:
+/// ..."), when its stamps do not increase: a relations file read as a trajectory repeats its
+/// first stamps with other motions.
+std::optional<std::vector<std::optional<io::Pose2D>>> groundTruthAtScans(const std::string &path,
+                                                                         const io::ScanLog &log, std::string &why);
 
 using evaluation::percentile;
 

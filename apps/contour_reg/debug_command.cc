@@ -8,10 +8,8 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "contour_reg/drawing/debug_images.h"
-#include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/read_log.h"
-#include "contour_reg/io/trajectory.h"
 #include "debug_dump.h"
 
 namespace contour_reg::cli {
@@ -42,14 +40,14 @@ bool referencePoses(const DebugOptions &options, const io::ScanLog &log, std::op
     source = b.odometry;
     from = options.pair.input + "'s poses";
   } else {
-    const io::Trajectory truth = io::readTum(options.ground_truth);
-    if (const std::size_t repeated = evaluation::nonIncreasingStamps(truth); repeated > 0) {
-      std::fprintf(stderr, "error: %s: %s\n", options.ground_truth.c_str(),
-                   stampsDoNotIncrease(repeated, truth.size(), "").c_str());
+    std::string why;
+    const auto poses = groundTruthAtScans(options.ground_truth, log, why);
+    if (!poses) {
+      std::fprintf(stderr, "error: %s\n", why.c_str());
       return false;
     }
-    target = evaluation::poseAt(truth, a.scan.stamp);
-    source = evaluation::poseAt(truth, b.scan.stamp);
+    target = (*poses)[std::size_t(options.pair.target())];
+    source = (*poses)[std::size_t(options.pair.scan)];
   }
   if (target && source) return true;
   std::fprintf(stderr, "error: %s: no pose at scan %d (stamp %.6f s) or scan %d (stamp %.6f s)\n", from.c_str(),

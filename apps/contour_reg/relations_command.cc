@@ -154,16 +154,10 @@ std::vector<ReferencedPair> pairsFromPoses(const io::ScanLog &log, const std::ve
 References referencePairs(const io::ScanLog &log, const RelationsOptions &options) {
   References references;
   if (!options.ground_truth.empty()) {
-    const io::Trajectory truth = io::readTum(options.ground_truth);
-    // A ground truth gives one pose per stamp (a relations file read as one does not: its
-    // first stamps repeat): as for evaluate, none is found in one whose stamps do not increase.
-    if (const std::size_t repeated = evaluation::nonIncreasingStamps(truth); repeated > 0) {
-      references.none = options.ground_truth + ": " + stampsDoNotIncrease(repeated, truth.size(), "");
-      return references;
-    }
-    std::vector<std::optional<io::Pose2D>> poses;
-    for (const io::LogEntry &entry : log.entries) poses.push_back(evaluation::poseAt(truth, entry.scan.stamp));
-    references.pairs = pairsFromPoses(log, poses, options.gt_gap);
+    // As for evaluate, none is found in a ground truth whose stamps do not increase.
+    const auto poses = groundTruthAtScans(options.ground_truth, log, references.none);
+    if (!poses) return references;
+    references.pairs = pairsFromPoses(log, *poses, options.gt_gap);
     references.kind =
         printed("pairs of scans %zu apart, referenced by %s", options.gt_gap, options.ground_truth.c_str());
     references.none = printed("%s has no pose at the stamps of scans %zu apart in %s", options.ground_truth.c_str(),
