@@ -195,6 +195,30 @@ inline void addDeskewOption(CLI::App &command, bool &deskew) {
                    "the log has it (on by default; docs/algorithm.md)");
 }
 
+/// --keyframes, --keyframe-distance, --keyframe-angle: match against the last keyframe
+/// (odometry.h), a new keyframe after this much motion or turn (the local map's keyframes too).
+struct KeyframeOptions {
+  bool match_keyframes = false;
+  double distance = 0.3;    ///< m
+  double angle_deg = 11.5;  ///< deg
+
+  void applyTo(odometry::OdometryOptions &options) const {
+    options.keyframes = match_keyframes;
+    options.keyframe_distance = distance;
+    options.keyframe_angle = angle_deg * M_PI / 180.0;
+  }
+};
+
+inline void addKeyframeOptions(CLI::App &command, KeyframeOptions &options) {
+  command.add_flag("--keyframes", options.match_keyframes, "Match against the last keyframe, not the previous scan");
+  command.add_option("--keyframe-distance", options.distance, "New keyframe after this motion (m)")
+      ->capture_default_str()
+      ->check(nonNegative());
+  command.add_option("--keyframe-angle", options.angle_deg, "New keyframe after this turn (deg)")
+      ->capture_default_str()
+      ->check(nonNegative());
+}
+
 /// --local-map: match against a local map of the last N keyframes (odometry.h), 0: off.
 inline void addLocalMapOption(CLI::App &command, std::size_t &keyframes) {
   command

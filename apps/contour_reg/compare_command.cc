@@ -34,7 +34,7 @@ struct CompareOptions {
   std::vector<std::string> methods = {"contour", "contour+icp", "icp", "icp-pl", "ndt2d"};
   std::string out;
   std::string guess = "zero", frame = "robot";
-  bool keyframes = false;
+  KeyframeOptions keyframes;
   std::size_t local_map = 0;
   bool deskew = true, wheel_fusion = true;
   bool log_poses = false;  // the log's own poses are the ground truth, hidden from the methods
@@ -207,7 +207,7 @@ void runJob(const CompareOptions &options, const Input &input, const std::string
   auto matcher = odometry::makeScanMatcher(method, options.method_options.settings());
   odometry::OdometryOptions run_options;
   run_options.guess = guessSource(options.guess);
-  run_options.keyframes = options.keyframes;
+  options.keyframes.applyTo(run_options);
   run_options.local_map_keyframes = options.local_map;
   run_options.deskew = options.deskew;
   run_options.fuse_wheel_odometry = options.wheel_fusion;
@@ -340,12 +340,12 @@ int runCompare(const CompareOptions &options) {
     for (const Row &row : rows)
       if (row.input == input.name && row.method != kWheelOdometry) estimates[row.method] = row.trajectory;
     const std::string title = input.name + ": " + std::to_string(input.log.entries.size()) + " scans, guess " +
-                              options.guess + (options.keyframes ? ", keyframes" : ", scan to scan");
+                              options.guess + (options.keyframes.match_keyframes ? ", keyframes" : ", scan to scan");
     drawing::writeImage((fs::path(options.out) / (input.name + ".trajectories.png")).string(),
                         drawing::drawTrajectories(estimates, *input.ground_truth, 1200, title));
   }
   std::printf("guess: %s; %s; ms = registration only\n\n", options.guess.c_str(),
-              options.keyframes ? "keyframes" : "scan to scan");
+              options.keyframes.match_keyframes ? "keyframes" : "scan to scan");
   if (threads > 0) std::fprintf(stderr, "%u parallel jobs\n", threads);
   writeTables(rows, options);
   return 0;
@@ -377,7 +377,7 @@ void addCompareCommand(CLI::App &app) {
   command->add_option("--out", options->out, "Output folder")->required();
   addGuessOption(*command, options->guess);
   addFrameOption(*command, options->frame);
-  command->add_flag("--keyframes", options->keyframes, "Match against keyframes, not the previous scan");
+  addKeyframeOptions(*command, options->keyframes);
   addLocalMapOption(*command, options->local_map);
   addDeskewOption(*command, options->deskew);
   addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);

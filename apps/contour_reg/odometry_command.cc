@@ -19,11 +19,11 @@ namespace {
 
 struct OdometryCommandOptions {
   std::string input, output, method = "contour", guess = "zero", frame = "robot";
-  bool odom_guess = false, keyframes = false, deskew = true, wheel_fusion = true;
+  bool odom_guess = false, deskew = true, wheel_fusion = true;
   odometry::WheelNoise wheel_noise;
   std::string debug_dir, covariance;
   std::size_t debug_every = 0, local_map = 0;
-  double keyframe_distance = 0.3, keyframe_angle_deg = 11.5;
+  KeyframeOptions keyframes;
   io::LogReadOptions read;
   MethodOptions methods;
 };
@@ -53,14 +53,12 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   auto matcher = odometry::makeScanMatcher(options.method, options.methods.settings());
   odometry::OdometryOptions run_options;
   run_options.guess = guessSource(options.odom_guess ? "odom" : options.guess);
-  run_options.keyframes = options.keyframes;
+  options.keyframes.applyTo(run_options);
   run_options.local_map_keyframes = options.local_map;
   run_options.deskew = options.deskew;
   run_options.fuse_wheel_odometry = options.wheel_fusion;
   run_options.wheel_noise = options.wheel_noise;
   run_options.frame = frameOf(options.frame);
-  run_options.keyframe_distance = options.keyframe_distance;
-  run_options.keyframe_angle = options.keyframe_angle_deg * M_PI / 180.0;
   ProgressBar progress(options.method);
   run_options.progress = [&](std::size_t done, std::size_t total) { progress(done, total); };
   // Debug images: every N-th pair and every failed registration.
@@ -116,16 +114,10 @@ void addOdometryCommand(CLI::App &app) {
   addGuessOption(*command, options->guess);
   addFrameOption(*command, options->frame);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
-  command->add_flag("--keyframes", options->keyframes, "Match against the last keyframe, not the previous scan");
+  addKeyframeOptions(*command, options->keyframes);
   addLocalMapOption(*command, options->local_map);
   addDeskewOption(*command, options->deskew);
   addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
-  command->add_option("--keyframe-distance", options->keyframe_distance, "New keyframe after this motion (m)")
-      ->capture_default_str()
-      ->check(nonNegative());
-  command->add_option("--keyframe-angle", options->keyframe_angle_deg, "New keyframe after this turn (deg)")
-      ->capture_default_str()
-      ->check(nonNegative());
   command->add_option("--debug-dir", options->debug_dir, "Write debug images of failed registrations here");
   command->add_option("--covariance", options->covariance,
                       "Also write one CSV row per registration: the motion as chained and its covariance (x, y, "

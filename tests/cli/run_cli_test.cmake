@@ -71,6 +71,22 @@ foreach(file table.md results.csv L-hokuyo-2hz.contour.tum L-hokuyo-2hz.icp.tum 
   endif()
 endforeach()
 
+# compare runs each method as odometry does, the keyframe options included: a new keyframe
+# after 1 m or 30 deg gives the same trajectory from both, and another from 0.3 m and 11.5 deg.
+set(KEYFRAMES --keyframes --keyframe-distance 1 --keyframe-angle 30)
+expect_run(0 odometry ${LOG} --method contour ${KEYFRAMES} --output ${WORK_DIR}/keyframes.tum)
+expect_run(0 odometry ${LOG} --method contour --keyframes --output ${WORK_DIR}/keyframes-default.tum)
+expect_run(0 compare ${LOG} --methods contour ${KEYFRAMES} --out ${WORK_DIR}/compare-keyframes)
+file(READ ${WORK_DIR}/keyframes.tum by_odometry)
+file(READ ${WORK_DIR}/keyframes-default.tum by_default)
+file(READ ${WORK_DIR}/compare-keyframes/L-hokuyo-2hz.contour.tum by_compare)
+if(NOT by_compare STREQUAL by_odometry)
+  message(FATAL_ERROR "compare ${KEYFRAMES} wrote another trajectory than odometry with the same options")
+endif()
+if(by_odometry STREQUAL by_default)
+  message(FATAL_ERROR "odometry: --keyframe-distance 1 --keyframe-angle 30 changed nothing")
+endif()
+
 # closure weighs how far registrations around triangles of scans fail to compose, by their
 # covariances: a row per method ('-' where a method gives no covariance), a CSV row per triangle.
 expect_run(0 closure ${LOG} --methods contour icp --triangles-csv ${WORK_DIR}/triangles.csv)
