@@ -260,6 +260,37 @@ inline void addWheelFusionOptions(CLI::App &command, bool &fuse, odometry::Wheel
       ->type_name("A1 A2 A3 A4");
 }
 
+/// How the odometry chains registrations, as `odometry` and `compare` take it: --frame, the
+/// keyframe options, --local-map, --deskew and the wheel fusion options.
+struct ChainOptions {
+  std::string frame = "robot";
+  KeyframeOptions keyframes;
+  std::size_t local_map = 0;
+  bool deskew = true, wheel_fusion = true;
+  odometry::WheelNoise wheel_noise;
+
+  /// The odometry's options for these, each registration's guess from `guess` (a name --guess has checked).
+  odometry::OdometryOptions runOptions(const std::string &guess) const {
+    odometry::OdometryOptions options;
+    options.guess = guessSource(guess);
+    keyframes.applyTo(options);
+    options.local_map_keyframes = local_map;
+    options.deskew = deskew;
+    options.fuse_wheel_odometry = wheel_fusion;
+    options.wheel_noise = wheel_noise;
+    options.frame = frameOf(frame);
+    return options;
+  }
+};
+
+inline void addChainOptions(CLI::App &command, ChainOptions &options) {
+  addFrameOption(command, options.frame);
+  addKeyframeOptions(command, options.keyframes);
+  addLocalMapOption(command, options.local_map);
+  addDeskewOption(command, options.deskew);
+  addWheelFusionOptions(command, options.wheel_fusion, options.wheel_noise);
+}
+
 /// A converged motion this far from a reference, or a triangle of registrations this far from
 /// closing, is a gross error (m, deg): not noise a covariance should cover.
 constexpr double kGrossMetres = 0.25, kGrossDegrees = 5.0;

@@ -33,12 +33,9 @@ struct CompareOptions {
   std::vector<std::string> inputs, ground_truths, relations;
   std::vector<std::string> methods = {"contour", "contour+icp", "icp", "icp-pl", "ndt2d"};
   std::string out;
-  std::string guess = "zero", frame = "robot";
-  KeyframeOptions keyframes;
-  std::size_t local_map = 0;
-  bool deskew = true, wheel_fusion = true;
+  std::string guess = "zero";
+  ChainOptions chain;
   bool log_poses = false;  // the log's own poses are the ground truth, hidden from the methods
-  odometry::WheelNoise wheel_noise;
   unsigned jobs = 0;
   double local_dt = 5.0;
   io::LogReadOptions read;
@@ -205,14 +202,7 @@ std::string recordPath(const CompareOptions &options, const std::string &input, 
 void runJob(const CompareOptions &options, const Input &input, const std::string &method,
             const std::function<void(std::size_t, std::size_t)> &progress) {
   auto matcher = odometry::makeScanMatcher(method, options.method_options.settings());
-  odometry::OdometryOptions run_options;
-  run_options.guess = guessSource(options.guess);
-  options.keyframes.applyTo(run_options);
-  run_options.local_map_keyframes = options.local_map;
-  run_options.deskew = options.deskew;
-  run_options.fuse_wheel_odometry = options.wheel_fusion;
-  run_options.wheel_noise = options.wheel_noise;
-  run_options.frame = frameOf(options.frame);
+  odometry::OdometryOptions run_options = options.chain.runOptions(options.guess);
   run_options.progress = progress;
   const odometry::OdometryRun run = odometry::runOdometry(input.log, *matcher, run_options);
   io::writeTum(trajectoryPath(options, input.name, method), run.trajectory,
@@ -340,12 +330,13 @@ int runCompare(const CompareOptions &options) {
     for (const Row &row : rows)
       if (row.input == input.name && row.method != kWheelOdometry) estimates[row.method] = row.trajectory;
     const std::string title = input.name + ": " + std::to_string(input.log.entries.size()) + " scans, guess " +
-                              options.guess + (options.keyframes.match_keyframes ? ", keyframes" : ", scan to scan");
+                              options.guess +
+                              (options.chain.keyframes.match_keyframes ? ", keyframes" : ", scan to scan");
     drawing::writeImage((fs::path(options.out) / (input.name + ".trajectories.png")).string(),
                         drawing::drawTrajectories(estimates, *input.ground_truth, 1200, title));
   }
   std::printf("guess: %s; %s; ms = registration only\n\n", options.guess.c_str(),
-              options.keyframes.match_keyframes ? "keyframes" : "scan to scan");
+              options.chain.keyframes.match_keyframes ? "keyframes" : "scan to scan");
   if (threads > 0) std::fprintf(stderr, "%u parallel jobs\n", threads);
   writeTables(rows, options);
   return 0;
@@ -376,11 +367,7 @@ void addCompareCommand(CLI::App &app) {
       ->check(CLI::ExistingFile);
   command->add_option("--out", options->out, "Output folder")->required();
   addGuessOption(*command, options->guess);
-  addFrameOption(*command, options->frame);
-  addKeyframeOptions(*command, options->keyframes);
-  addLocalMapOption(*command, options->local_map);
-  addDeskewOption(*command, options->deskew);
-  addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
+  addChainOptions(*command, options->chain);
   command->add_option("--jobs,-j", options->jobs, "Parallel runs (default: one per core)");
   command->add_option("--local-dt", options->local_dt, "Relations at most this far apart are local (s)")
       ->capture_default_str()

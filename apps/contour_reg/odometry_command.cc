@@ -18,12 +18,11 @@ namespace contour_reg::cli {
 namespace {
 
 struct OdometryCommandOptions {
-  std::string input, output, method = "contour", guess = "zero", frame = "robot";
-  bool odom_guess = false, deskew = true, wheel_fusion = true;
-  odometry::WheelNoise wheel_noise;
+  std::string input, output, method = "contour", guess = "zero";
+  bool odom_guess = false;
+  ChainOptions chain;
   std::string debug_dir, covariance;
-  std::size_t debug_every = 0, local_map = 0;
-  KeyframeOptions keyframes;
+  std::size_t debug_every = 0;
   io::LogReadOptions read;
   MethodOptions methods;
 };
@@ -51,14 +50,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
   printReadReport(log);
   warnOfMissingOdometry(log, options.odom_guess ? "odom" : options.guess, options.read);
   auto matcher = odometry::makeScanMatcher(options.method, options.methods.settings());
-  odometry::OdometryOptions run_options;
-  run_options.guess = guessSource(options.odom_guess ? "odom" : options.guess);
-  options.keyframes.applyTo(run_options);
-  run_options.local_map_keyframes = options.local_map;
-  run_options.deskew = options.deskew;
-  run_options.fuse_wheel_odometry = options.wheel_fusion;
-  run_options.wheel_noise = options.wheel_noise;
-  run_options.frame = frameOf(options.frame);
+  odometry::OdometryOptions run_options = options.chain.runOptions(options.odom_guess ? "odom" : options.guess);
   ProgressBar progress(options.method);
   run_options.progress = [&](std::size_t done, std::size_t total) { progress(done, total); };
   // Debug images: every N-th pair and every failed registration.
@@ -69,7 +61,7 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
                                const odometry::MatchResult &match, const Eigen::Matrix3d &guess) {
       if (!match.converged || (options.debug_every > 0 && k % options.debug_every == 0)) {
         const PairMotions from_guess{io::toPose(guess), std::nullopt};
-        if (options.local_map > 0)
+        if (options.chain.local_map > 0)
           dumper->dumpMapPair(log, target, reference, k, from_guess);
         else
           dumper->dumpPair(log, reference, k, {}, from_guess);
@@ -112,12 +104,8 @@ void addOdometryCommand(CLI::App &app) {
       ->capture_default_str();
   command->add_option("--output,-o", options->output, "TUM trajectory to write")->required();
   addGuessOption(*command, options->guess);
-  addFrameOption(*command, options->frame);
   command->add_flag("--odom-guess", options->odom_guess, "Same as --guess odom");
-  addKeyframeOptions(*command, options->keyframes);
-  addLocalMapOption(*command, options->local_map);
-  addDeskewOption(*command, options->deskew);
-  addWheelFusionOptions(*command, options->wheel_fusion, options->wheel_noise);
+  addChainOptions(*command, options->chain);
   command->add_option("--debug-dir", options->debug_dir, "Write debug images of failed registrations here");
   command->add_option("--covariance", options->covariance,
                       "Also write one CSV row per registration: the motion as chained and its covariance (x, y, "
