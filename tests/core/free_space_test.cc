@@ -112,6 +112,24 @@ TEST(FreeSpace, ApproximateBearingIsWithinItsBoundAndKeepsBearingOrder) {
   EXPECT_GT(worst, 1.9e-4);  // the bound is tight: no tighter one may be promised
 }
 
+TEST(FreeSpace, TheSurfaceBetweenTwoReturnsIsTheSegmentBetweenThem) {
+  // A wall along y = 1.2 seen from the origin by beams 1 deg apart: 8 m ahead they meet it at
+  // 8.5 deg, and two neighbouring returns lie about 0.9 m apart along it.
+  ComplexSequence returns;
+  for (int k = 1; k <= 80; ++k) {
+    const double bearing = k * M_PI / 180.0;
+    returns.emplace_back(1.2 / std::tan(bearing), 1.2);
+  }
+  RangeView view;
+  view.assign(returns);
+  EXPECT_LT(view.distanceToSurface(Eigen::Vector2d(8.0, 1.2)), 1e-9);           // on the wall between two returns
+  EXPECT_NEAR(view.distanceToSurface(Eigen::Vector2d(8.0, 1.15)), 0.05, 1e-9);  // 5 cm in front of it
+  EXPECT_LT(view.distanceToSurface(Eigen::Vector2d(-1.0, 0.0)), 0.0);           // behind the sensor: no returns there
+  // A point on the wall lies up to 0.9 m behind the nearer of the two returns around its
+  // bearing, the range the view measures there: beyond a free-space margin, hidden.
+  EXPECT_EQ(view.sightOf(Eigen::Vector2d(8.45, 1.2), 0.3), RangeView::Sight::kHidden);
+}
+
 TEST(FreeSpace, BearingsWithoutReturnsGiveNoEvidence) {
   simulation::World wall;  // one wall ahead: no return at most bearings
   wall.addSegment({3.0, -1.0}, {3.0, 1.0});

@@ -41,15 +41,18 @@ FreeSpaceEvidence &FreeSpaceEvidence::operator+=(const FreeSpaceEvidence &other)
 void RangeView::add(const Complex &point) {
   bearings_.push_back(approximateAtan2(point.imag(), point.real()));
   ranges_.push_back(magnitude(point));
+  points_.push_back(toEigen(point));
 }
 
 void RangeView::assign(const ContourFeatures &scan) {
   bearings_.clear();
   ranges_.clear();
+  points_.clear();
   std::size_t points = 0;
   for (const ContourSegment &segment : scan.segments) points += segment.points.size();
   bearings_.reserve(points);
   ranges_.reserve(points);
+  points_.reserve(points);
   for (const ContourSegment &segment : scan.segments)
     for (const Complex &p : segment.points) add(p);
   index();
@@ -58,6 +61,7 @@ void RangeView::assign(const ContourFeatures &scan) {
 void RangeView::assign(const ComplexSequence &points) {
   bearings_.clear();
   ranges_.clear();
+  points_.clear();
   for (const Complex &p : points)
     if (isFinite(p)) add(p);
   index();
@@ -69,12 +73,15 @@ void RangeView::index() {
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bearings_[a] < bearings_[b]; });
     std::vector<double> bearings(order.size()), ranges(order.size());
+    std::vector<Eigen::Vector2d> points(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) {
       bearings[k] = bearings_[order[k]];
       ranges[k] = ranges_[order[k]];
+      points[k] = points_[order[k]];
     }
     bearings_.swap(bearings);
     ranges_.swap(ranges);
+    points_.swap(points);
   }
   buckets_.build(bearings_, 2);
   farthest_ = ranges_.empty() ? 0.0 : *std::max_element(ranges_.begin(), ranges_.end());
@@ -86,10 +93,9 @@ void RangeView::index() {
   max_gap_ = kGapSpacings * spacing_[spacing_.size() / 2];
 }
 
-double RangeView::rangeAt(double bearing) const {
-  if (bearings_.size() < 2) return -1.0;
+bool RangeView::bracket(double bearing, std::size_t &lo, std::size_t &hi) const {
+  if (bearings_.size() < 2) return false;
   const auto above = bearings_.begin() + buckets_.firstAtOrAbove(bearings_, bearing);
-  std::size_t lo, hi;
   double gap;
   if (above == bearings_.begin() || above == bearings_.end()) {  // across the +-pi cut
     lo = bearings_.size() - 1;
@@ -100,8 +106,22 @@ double RangeView::rangeAt(double bearing) const {
     lo = hi - 1;
     gap = bearings_[hi] - bearings_[lo];
   }
-  if (gap > max_gap_) return -1.0;
+  return gap <= max_gap_;
+}
+
+double RangeView::rangeAt(double bearing) const {
+  std::size_t lo, hi;
+  if (!bracket(bearing, lo, hi)) return -1.0;
   return std::min(ranges_[lo], ranges_[hi]);
+}
+
+double RangeView::distanceToSurface(const Eigen::Vector2d &point) const {
+  std::size_t lo, hi;
+  if (!bracket(approximateAtan2(point.y(), point.x()), lo, hi)) return -1.0;
+  const Eigen::Vector2d a = points_[lo], along = points_[hi] - a;
+  const double length2 = along.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((point - a).dot(along) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * along - point).norm();
 }
 
 RangeView::Sight RangeView::sightOf(const Eigen::Vector2d &point, double margin) const {

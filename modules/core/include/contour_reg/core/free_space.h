@@ -74,6 +74,11 @@ class RangeView {
   /// The range the scan measured at `bearing` (rad): the nearer of the two bracketing
   /// returns, or a negative value where it has no evidence (outside its view, in a gap).
   double rangeAt(double bearing) const;
+  /// m, how far a point (sensor frame) lies from the surface the scan measured at its bearing:
+  /// the segment between the two returns that bracket it, or a negative value where it has no
+  /// evidence. Along a wall the beams meet at a glancing angle the returns lie too far apart
+  /// to form a contour, and the segment between two of them is still the wall.
+  double distanceToSurface(const Eigen::Vector2d &point) const;
 
   /// What the view says of a point (sensor frame): no evidence at its bearing, whether the
   /// scan's beam there passed more than `margin` m beyond it (saw through it), or stopped more
@@ -88,10 +93,14 @@ class RangeView {
 
  private:
   std::vector<double> bearings_, ranges_;
-  BearingBuckets buckets_;       // over bearings_
-  std::vector<double> spacing_;  // working memory of assign()
+  std::vector<Eigen::Vector2d> points_;  // the returns, by bearing as bearings_
+  BearingBuckets buckets_;               // over bearings_
+  std::vector<double> spacing_;          // working memory of assign()
   void add(const Complex &point);
-  void index();            // sorts by bearing, buckets the bearings and sets max_gap_
+  void index();  // sorts by bearing, buckets the bearings and sets max_gap_
+  // The returns lo and hi that bracket `bearing` (across the +-pi cut too); false where they
+  // lie more than max_gap_ apart or there are fewer than two.
+  bool bracket(double bearing, std::size_t &lo, std::size_t &hi) const;
   double max_gap_ = 0.0;   // rad, bracketing returns farther apart than this leave a gap
   double farthest_ = 0.0;  // m, the largest range
 };
