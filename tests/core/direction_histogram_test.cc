@@ -340,6 +340,31 @@ TEST(Repetition, PairsAlongTheBuiltInDoorRowAreNotAnsweredAPeriodOff) {
   }
 }
 
+TEST(Repetition, TheWallBetweenSparseReturnsIsWhatTheTargetSaw) {
+  // The same door row seen by a SICK-like LIDAR (180 deg ahead, 1 deg beams; `simulate
+  // --lidar sick`, seed 1): its beams meet the walls ahead at a glancing angle, their returns
+  // 0.9 m apart at 8 m, too sparse for a contour beyond about 5 m. Scans 3 and 4 m apart also
+  // fit a motion a whole period shorter,
+  // which lays the source on the target's contours; the truth lays the source's far part on
+  // the walls between the target's sparse returns. That is what the target saw: on the view
+  // both share the two fit alike, and the pair is ambiguous, not answered a period off.
+  simulation::RunSettings settings;
+  settings.rate = 1.0;
+  settings.speed = 1.0;
+  settings.lidar = simulation::LidarModel::sickLms200();
+  settings.lidar.range_max = 40.0;  // read as the command line reads it: the row's far end unseen
+  const simulation::SimulatedRun run =
+      simulation::simulateRun(simulation::makeBuiltInWorld("doors"), simulation::doorRowPath("line"), settings);
+  for (const auto &[first, second] : {std::pair{17, 20}, std::pair{3, 7}}) {
+    SCOPED_TRACE(testing::Message() << "scans " << first << " and " << second);
+    const ContourFeatures target = extractContourFeatures(run.log.entries[first].scan, ContourParams{});
+    const ContourFeatures source = extractContourFeatures(run.log.entries[second].scan, ContourParams{});
+    const RegistrationResult r = registerSeeded(source, target, RegistrationParams{});
+    EXPECT_EQ(r.status, RegistrationStatus::kAmbiguous)
+        << r.reason << "; answered " << r.transform(0, 2) << " m, truth " << second - first << " m";
+  }
+}
+
 // Shallow recesses 1.5 m wide every 5 m along one wall: along the corridor little pulls a
 // refinement, which slides a few centimetres an iteration. Scans from x0 and from dx, dy further.
 struct ShallowRecessPair {

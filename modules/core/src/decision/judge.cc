@@ -51,8 +51,8 @@ constexpr double kMostOfTheContour = 0.5;
 
 // Whether `moved`, where a probe settled and scored `moved_score`, fits worse than the best on
 // the part of the source within the target's reach under both (sharedViewFit,
-// TargetSight::kWithinReach): the share of that part on the target contour less the free
-// space's contradiction, lower by more than the tie. Moved along a corridor, the source's
+// TargetSight::kContoursWithinReach): the share of that part on the target contour less the
+// free space's contradiction, lower by more than the tie. Moved along a corridor, the source's
 // walls reach past where the target's range ended or before its field of view began: the
 // overlap drops there though nothing the target could see disagrees. Such ends of the view
 // move with the sensor and pin no motion.
@@ -60,7 +60,7 @@ bool fitsWorseWithinReach(ScoredMotion &best, const RefinementResult &moved, dou
                           const RegistrationParams &params, RegistrationBuffers &buffers, Scorer &scorer) {
   const SharedViewFit fit =
       sharedViewFit(buffers.samples, buffers.refiner, scorer.targetView(), best.refined.transform, moved.transform,
-                    params.refinement.min_distance, params.free_space.margin, TargetSight::kWithinReach);
+                    params.refinement.min_distance, params.free_space.margin, TargetSight::kContoursWithinReach);
   if (!(fit.shared > 0.0)) return false;
   // A score is the overlap less the contradiction: each motion's contradiction is known from it.
   const double best_contradiction = best.refined.overlap - scorer.score(best);
@@ -236,9 +236,11 @@ bool standsAgainstContours(Judged &found, const RegistrationParams &params, cons
 
 // Whether the best stands against the motions a period of repeated structure off it
 // (repetition.h): none that refines to a distinct motion scores higher than the best, and none,
-// contradicted no more than the best, lays nearly as much of the view both share on the target
-// contour. The second is weighed with the free space only: what the target saw decides what
-// the two share. A motion that scores higher is the rival (Judged::rival) when this says no.
+// contradicted no more than the best, lays nearly as much of the view both share on the
+// target's surface (its contour and the walls between its returns: TargetSight::
+// kReturnsAtBearing). The second is weighed with the free space only: what the target saw
+// decides what the two share. A motion that scores higher is the rival (Judged::rival) when
+// this says no.
 bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                              Scorer &scorer) {
   if (!params.free_space.enabled) return true;
@@ -255,8 +257,9 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
     found.consider(rival, score);
     if (score > best_score) return false;  // the best is not the best of what the judge weighed
     if (rival.overlap - score > against_best + kScoreTie) continue;
-    const SharedViewFit fit = sharedViewFit(buffers.samples, buffers.refiner, scorer.targetView(), best.transform,
-                                            rival.transform, params.refinement.min_distance, params.free_space.margin);
+    const SharedViewFit fit =
+        sharedViewFit(buffers.samples, buffers.refiner, scorer.targetReturnsView(), best.transform, rival.transform,
+                      params.refinement.min_distance, params.free_space.margin, TargetSight::kReturnsAtBearing);
     if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) {
       if (found.ties.empty()) found.rival = ScoredMotion{rival, true, score};  // the motion the best ties with
       if (std::none_of(found.ties.begin(), found.ties.end(), [&](const ScoredMotion &tie) {

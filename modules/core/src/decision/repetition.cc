@@ -128,23 +128,23 @@ void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, co
 
 SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
                             const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
-                            double on_contour, double hidden_margin, TargetSight sight) {
+                            double on_surface, double hidden_margin, TargetSight sight) {
   SharedViewFit fit;
   if (samples.empty()) return fit;
-  // Whether a point (target frame) lies on the target contour, and whether the target saw its
-  // spot: on its contour, or a return at its bearing with the point not behind it. Between two
-  // returns the view takes the nearer, so a point on a wall the beams meet at a glancing angle
-  // may lie behind it and still be on the contour the target measured.
+  // Whether a point (target frame) lies on the target's surface, and whether the target saw
+  // its spot: on its surface, or where it could have seen it and not behind what it saw.
   struct Spot {
-    bool on_contour, seen;
+    bool on_surface, seen;
   };
+  const bool between_returns = sight == TargetSight::kReturnsAtBearing;
   const auto spot = [&](const Eigen::Vector2d &point) {
-    const bool on = refiner.pairs(point, on_contour);
-    if (on) return Spot{true, true};
+    if (refiner.pairs(point, on_surface)) return Spot{true, true};
     const RangeView::Sight seen = target_view.sightOf(point, hidden_margin);
-    const bool in_view =
-        sight == TargetSight::kWithinReach ? target_view.reaches(point) : seen != RangeView::Sight::kNoEvidence;
-    return Spot{false, in_view && seen != RangeView::Sight::kHidden};
+    const bool in_view = between_returns ? seen != RangeView::Sight::kNoEvidence : target_view.reaches(point);
+    if (!in_view || seen == RangeView::Sight::kHidden) return Spot{false, false};
+    if (!between_returns) return Spot{false, true};
+    const double off = target_view.distanceToSurface(point);
+    return Spot{off >= 0.0 && off <= on_surface, true};
   };
   int shared = 0, on_first = 0, on_second = 0;
   for (const Eigen::Vector2d &p : samples) {
@@ -153,8 +153,8 @@ SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const C
     const Spot b = spot(transformPoint(second, p));
     if (!b.seen) continue;
     ++shared;
-    on_first += a.on_contour;
-    on_second += b.on_contour;
+    on_first += a.on_surface;
+    on_second += b.on_surface;
   }
   fit.shared = static_cast<double>(shared) / static_cast<double>(samples.size());
   if (shared > 0) {

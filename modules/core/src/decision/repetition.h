@@ -18,10 +18,16 @@
 ///   best shifted by it a candidate. Corners alone do not find periods: a door frame seen
 ///   from another spot often yields other special points.
 /// - Shared view: the source samples the target could have seen under both motions: on the
-///   target contour, or at a bearing where the target has a return and not hidden behind it
-///   (free_space.h's margin).
-/// - The best is rivalled when a shifted motion, refined, pairs nearly as large a share of the
-///   shared view (within kScoreTie) and the free space contradicts it no more than the best.
+///   surface it measured, or at a bearing where it has a return and not hidden behind it
+///   (free_space.h's margin). Its returns are all of them, isolated ones too, and its surface
+///   is its contour and the segment between each two neighbouring returns, up to the margin
+///   behind the nearer of them: along a wall its beams meet at a glancing angle, the returns
+///   lie too far apart to form a contour (with 1 deg beams, 0.9 m apart at 8 m along a
+///   corridor 2.4 m wide), and a motion that lays the source there lays it on what the target
+///   saw; a segment across a depth jump, from an edge to what lies behind it, is hidden.
+/// - The best is rivalled when a shifted motion, refined, lays nearly as large a share of the
+///   shared view on the target's surface (within kScoreTie) and the free space contradicts it
+///   no more than the best.
 
 #include <vector>
 
@@ -48,21 +54,28 @@ void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, co
 /// How two motions fit the part of the source both let the target see.
 struct SharedViewFit {
   double shared = 0.0;  ///< share of the source samples the target sees under both motions
-  double first = 0.0;   ///< share of the shared samples the first motion lays on the target contour
+  double first = 0.0;   ///< share of the shared samples the first motion lays on the target's surface
   double second = 0.0;  ///< the same for the second
 };
 
-/// Where the target could have seen a sample off its contour: at a bearing where it has a
-/// return, or anywhere within its reach (RangeView::reaches: its field of view and range, the
-/// gaps between its returns included).
-enum class TargetSight { kReturnAtBearing, kWithinReach };
+/// What of the target a shared view weighs: its returns, or its contours.
+/// - kReturnsAtBearing: `target_view` is the view of all the target's returns, isolated ones
+///   too (Scorer::targetReturnsView). The target saw a sample at a bearing where it has a
+///   return, and its surface includes the segment between the two returns that bracket the
+///   sample's bearing (where the sample is not hidden).
+/// - kContoursWithinReach: `target_view` is the view of its contours (Scorer::targetView). It
+///   could have seen a sample anywhere within their reach (RangeView::reaches: their field of
+///   view and range, the gaps between them included), and its surface is its contour.
+enum class TargetSight { kReturnsAtBearing, kContoursWithinReach };
 
 /// The fit of `first` and `second` (source to target) on the shared view of the source
-/// `samples`: a sample lies on the target contour when the refiner pairs it within
-/// `on_contour` m; the target saw it when it lies on the target contour, or where `sight`
-/// says the target could have seen it and no more than `hidden_margin` m behind what it saw.
+/// `samples`: a sample lies on the target's surface when the refiner pairs it with the target
+/// contour within `on_surface` m or, with kReturnsAtBearing, it lies that close to the segment
+/// between the target's returns around its bearing; the target saw it when it lies on its
+/// surface, or where `sight` says the target could have seen it and no more than
+/// `hidden_margin` m behind what it saw.
 SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
                             const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
-                            double on_contour, double hidden_margin, TargetSight sight = TargetSight::kReturnAtBearing);
+                            double on_surface, double hidden_margin, TargetSight sight);
 
 }  // namespace contour_reg::decision

@@ -57,6 +57,11 @@ const RangeView &Scorer::targetView() {
   return buffers_.target_view;
 }
 
+const RangeView &Scorer::targetReturnsView() {
+  prepareReturnViews();
+  return buffers_.target_returns_view;
+}
+
 double Scorer::score(ScoredMotion &motion) {
   if (!motion.scored) motion.score = score(motion.refined);
   motion.scored = true;

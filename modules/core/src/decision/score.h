@@ -53,8 +53,11 @@ class Scorer {
   /// free space (contradictedReturnShare; 0 with free space off).
   double contradictedReturns(const Eigen::Matrix3d &motion);
 
-  /// The target's view (built on first use, free space on or off).
+  /// The target's view of its contours (built on first use, free space on or off).
   const RangeView &targetView();
+  /// The target's view of all its returns, isolated ones too (built on first use, free space
+  /// on or off).
+  const RangeView &targetReturnsView();
 
   const ContourFeatures &source() const { return source_; }
   const ContourFeatures &target() const { return target_; }
