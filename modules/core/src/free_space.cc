@@ -118,10 +118,7 @@ double RangeView::rangeAt(double bearing) const {
 double RangeView::distanceToSurface(const Eigen::Vector2d &point) const {
   std::size_t lo, hi;
   if (!bracket(approximateAtan2(point.y(), point.x()), lo, hi)) return -1.0;
-  const Eigen::Vector2d a = points_[lo], along = points_[hi] - a;
-  const double length2 = along.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((point - a).dot(along) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * along - point).norm();
+  return distanceToSegment(point, points_[lo], points_[hi]);
 }
 
 RangeView::Sight RangeView::sightOf(const Eigen::Vector2d &point, double margin) const {

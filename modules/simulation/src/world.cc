@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "contour_reg/core/types.h"
+
 namespace contour_reg::simulation {
 
 namespace {
@@ -54,12 +56,7 @@ double World::castRay(const Eigen::Vector2d &origin, const Eigen::Vector2d &dire
 
 double World::clearance(const Eigen::Vector2d &p) const {
   double best = std::numeric_limits<double>::infinity();
-  for (const Segment &s : segments_) {
-    const Eigen::Vector2d edge = s.b - s.a;
-    const double length2 = edge.squaredNorm();
-    const double u = length2 > 0.0 ? std::clamp((p - s.a).dot(edge) / length2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (s.a + u * edge - p).norm());
-  }
+  for (const Segment &s : segments_) best = std::min(best, distanceToSegment(p, s.a, s.b));
   for (const Circle &c : circles_) best = std::min(best, std::max(0.0, (p - c.centre).norm() - c.radius));
   if (grid_) best = std::min(best, grid_->clearance(p));
   return best;

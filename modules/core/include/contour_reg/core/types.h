@@ -3,6 +3,7 @@
 /// Basic types of the contour pipeline. The paper writes every 2-D vector as a
 /// complex number x + iy; so does this code.
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -19,6 +20,14 @@ using ComplexSequence = std::vector<Complex>;
 
 inline Eigen::Vector2d toEigen(const Complex &c) { return {c.real(), c.imag()}; }
 inline Complex toComplex(const Eigen::Vector2d &v) { return {v.x(), v.y()}; }
+
+/// How far `p` lies from the segment from `a` to `b` (from `a` when the two coincide).
+inline double distanceToSegment(const Eigen::Vector2d &p, const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
+  const Eigen::Vector2d edge = b - a;
+  const double length2 = edge.squaredNorm();
+  const double u = length2 > 0.0 ? std::clamp((p - a).dot(edge) / length2, 0.0, 1.0) : 0.0;
+  return (a + u * edge - p).norm();
+}
 
 /// |c|, the length of a vector. std::abs on a complex number calls hypot, which guards
 /// against overflow at several times the cost; LIDAR coordinates in metres never come near
