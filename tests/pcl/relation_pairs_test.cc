@@ -1,5 +1,6 @@
 // Pairs of the real logs in ../shared/datasets that test one verdict of the judge,
 // registered from a zero guess as a PCL user would. Skipped when the logs are absent.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -131,6 +132,36 @@ TEST(RelationPairs, ADistinctMotionAlongTheCorridorThatFitsAsWellIsAmbiguous) {
     // The motions that fit as well, for a prior on the motion to decide between.
     ASSERT_EQ(result.alternatives.size(), 2u) << result.reason;
     EXPECT_GT(motionDistance(result.alternatives[0].transform, result.alternatives[1].transform), kDistinctMotions);
+  }
+}
+
+// infinite-corridor, scans 218 and 221: the robot drives 3.33 m along a corridor whose walls
+// ahead the LIDAR's beams meet at a glancing angle, as returns too far apart to form a contour.
+// No pair of special points decides; the contours' best lies 2.9 m short (0.40 m ahead),
+// laying the source's near walls and door frames on the target's contour (71 % of the source
+// contour). Started 2.5 m further along the corridor, the refinement settles near the truth,
+// where the source's near walls lie on the target's sparse returns ahead: off the target's
+// contour, it scores lower, but on the part of the source both motions let the target see,
+// its surface taken as its contour and the walls between its returns, it fits better (83 %
+// against 75 %). The judge calls the pair ambiguous rather than return a motion 3 m short.
+TEST(RelationPairs, ADistinctMotionAlongTheCorridorThatFitsWhatBothSawBetterIsAmbiguous) {
+  const io::ScanLog *log = infiniteCorridor();
+  if (!log) GTEST_SKIP() << "../shared/datasets/radish-gmapping-corrected is absent";
+  const RegistrationResult result = registerScans(*log, 218, 221);
+
+  // The corrected poses' motion from scan 218 to scan 221: converging must be right.
+  const auto from_truth = [](const Eigen::Matrix3d &t) { return departure(t, 3.3319, 0.2697, 0.12964); };
+  if (result.converged) {
+    EXPECT_LT(from_truth(result.transform).metres, 0.1);
+    EXPECT_LT(from_truth(result.transform).degrees, 2.0);
+  } else {
+    EXPECT_EQ(result.status, RegistrationStatus::kAmbiguous) << result.reason;
+    // The motions that fit as well, for a prior on the motion to decide between: one of them
+    // is the motion along the corridor near the truth.
+    ASSERT_EQ(result.alternatives.size(), 2u) << result.reason;
+    EXPECT_LT(std::min(from_truth(result.alternatives[0].transform).metres,
+                       from_truth(result.alternatives[1].transform).metres),
+              0.5);
   }
 }
 

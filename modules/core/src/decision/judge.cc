@@ -49,6 +49,25 @@ std::function<bool(const Eigen::Matrix3d &)> backTo(const Eigen::Matrix3d &best)
 // stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
 constexpr double kMostOfTheContour = 0.5;
 
+// How `best` and `motion` fit the part of the source `samples` both let the target see, on its
+// surface: its contour and the walls between its returns (sharedViewFit, TargetSight::kReturnsAtBearing).
+SharedViewFit fitOnWhatBothSaw(const std::vector<Eigen::Vector2d> &samples, const RefinementResult &best,
+                               const Eigen::Matrix3d &motion, const RegistrationParams &params,
+                               RegistrationBuffers &buffers, Scorer &scorer) {
+  return sharedViewFit(samples, buffers.refiner, scorer.targetReturnsView(), best.transform, motion,
+                       params.refinement.min_distance, params.free_space.margin, TargetSight::kReturnsAtBearing);
+}
+
+// Keeps `motion`, scored `score`, among the distinct motions that fit what both scans saw as
+// well as the best (Judged::ties); the first of them is the rival.
+void keepTie(Judged &found, const RefinementResult &motion, double score) {
+  if (found.ties.empty()) found.rival = ScoredMotion{motion, true, score};
+  if (std::none_of(found.ties.begin(), found.ties.end(), [&](const ScoredMotion &tie) {
+        return motionDistance(tie.refined.transform, motion.transform) <= kDistinctMotions;
+      }))
+    found.ties.push_back(ScoredMotion{motion, true, score});
+}
+
 // Whether `moved`, where a probe settled and scored `moved_score`, fits worse than the best on
 // the part of the source within the target's reach under both (sharedViewFit,
 // TargetSight::kContoursWithinReach): the share of that part on the target contour less the
@@ -105,19 +124,37 @@ bool settlesBack(Judged &found, const RegistrationParams &params, RegistrationBu
 constexpr double kSweepStep = 0.5;
 
 // Whether no distinct motion along the best's weakest direction, within the scan's reach,
-// scores within the tie of the best. The probes (settlesBack) see the basin of the best alone;
-// along a corridor another optimum metres away can fit as well: the true motion, where the
-// contours' best laid door frames and wall ends on others further along, or a second alias.
+// scores within the tie of the best or fits what both scans saw better. The probes
+// (settlesBack) see the basin of the best alone; along a corridor another optimum metres away
+// can fit as well: the true motion, where the contours' best laid door frames and wall ends on
+// others further along, or a second alias. The score can favour the alias: along a corridor a
+// LIDAR's beams meet the walls ahead at a glancing angle, its returns there lie too far apart
+// to form a contour, and the true motion lays the source's near walls on those sparse returns,
+// off the target's contour, while the alias lays contour on contour. On the part of the source
+// both motions let the target see, its surface taken as its contour and the walls between its
+// returns (fitOnWhatBothSaw, as the check for repeated structure weighs it), the truth fits
+// better: a distinct motion that lays more than the tie's share more of that part on the target,
+// and that the free space contradicts no more than the best (give or take the tie), rivals the best.
 // Refinements start every kSweepStep m along the direction, both ways, from twice that out to
 // the RMS range of the best's paired points (RefinementResult::rms_range): farther, a moved
 // scan shares little of what the other saw. Each is screened as the hypotheses are (refine.h:
 // kScreeningIterations on samples twice as sparse); one that heads for a distinct motion and
-// already scores within twice the tie of the best (after the screening it has not settled
-// yet) is refined in full from there, and scored.
+// already scores within twice the tie of the best, or fits what both scans saw within twice the
+// tie of it (after the screening it has not settled yet), is refined in full from there, scored
+// and weighed on what both scans saw.
 bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &params, RegistrationBuffers &buffers,
                                      Scorer &scorer) {
   const RefinementResult &best = found.best.refined;
   const double best_score = scorer.score(found.best);
+  const double against_best = best.overlap - best_score;  // a score is the overlap less the contradiction
+  // Whether the shared view of `samples`, where most of the source lies in it, favours `motion`
+  // by more than `lead`.
+  const auto sharedViewFavours = [&](const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &motion,
+                                     double lead) {
+    if (!params.free_space.enabled) return false;
+    const SharedViewFit fit = fitOnWhatBothSaw(samples, best, motion, params, buffers, scorer);
+    return fit.shared >= kMostOfTheContour && fit.second > fit.first + lead;
+  };
   RefinementParams from_start = params.refinement;
   from_start.max_distance = params.refinement.max_distance + 0.5 * kSweepStep;
   RefinementParams screening = from_start;
@@ -131,15 +168,20 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
       const Eigen::Vector3d off = sign * along * best.weakest_direction;
       const RefinementResult quick =
           buffers.refiner.refine(sparse, rigidTransform(x + off(0), y + off(1), yaw + off(2)), screening, near_best);
+      if (motionDistance(quick.transform, best.transform) <= kDistinctMotions) continue;
       // A score is never above the overlap: only a start that overlaps enough pays for the free space.
-      if (motionDistance(quick.transform, best.transform) <= kDistinctMotions ||
-          quick.overlap <= best_score - 2.0 * kScoreTie || scorer.score(quick) <= best_score - 2.0 * kScoreTie)
-        continue;
+      const bool scores_near =
+          quick.overlap > best_score - 2.0 * kScoreTie && scorer.score(quick) > best_score - 2.0 * kScoreTie;
+      if (!scores_near && !sharedViewFavours(sparse, quick.transform, -2.0 * kScoreTie)) continue;
       const RefinementResult r = buffers.refiner.refine(buffers.samples, quick.transform, from_start, near_best);
       if (motionDistance(r.transform, best.transform) <= kDistinctMotions) continue;
       const double score = scorer.score(r);
       found.consider(r, score);
       if (score > best_score - kScoreTie) return false;
+      if (r.overlap - score <= against_best + kScoreTie && sharedViewFavours(buffers.samples, r.transform, kScoreTie)) {
+        keepTie(found, r, score);
+        return false;
+      }
     }
   return true;
 }
@@ -257,16 +299,8 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
     found.consider(rival, score);
     if (score > best_score) return false;  // the best is not the best of what the judge weighed
     if (rival.overlap - score > against_best + kScoreTie) continue;
-    const SharedViewFit fit =
-        sharedViewFit(buffers.samples, buffers.refiner, scorer.targetReturnsView(), best.transform, rival.transform,
-                      params.refinement.min_distance, params.free_space.margin, TargetSight::kReturnsAtBearing);
-    if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) {
-      if (found.ties.empty()) found.rival = ScoredMotion{rival, true, score};  // the motion the best ties with
-      if (std::none_of(found.ties.begin(), found.ties.end(), [&](const ScoredMotion &tie) {
-            return motionDistance(tie.refined.transform, rival.transform) <= kDistinctMotions;
-          }))
-        found.ties.push_back(ScoredMotion{rival, true, score});
-    }
+    const SharedViewFit fit = fitOnWhatBothSaw(buffers.samples, best, rival.transform, params, buffers, scorer);
+    if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) keepTie(found, rival, score);
   }
   return found.ties.empty();
 }
@@ -445,7 +479,8 @@ RegistrationStatus judgeContourMotion(Judged &found, const RegistrationParams &p
     }
     if (params.probe_distance > 0.0 && !unrivalledAlongWeakestDirection(found, params, buffers, scorer)) {
       if (promotes()) continue;
-      return decline(RegistrationStatus::kAmbiguous, "a distinct motion along the weakest direction fits as well");
+      return decline(RegistrationStatus::kAmbiguous,
+                     "a distinct motion along the weakest direction fits as well, or better on what both scans saw");
     }
     if (beamsDisagree(finding)) return decline(RegistrationStatus::kLowOverlap, lowOverlapText() + ", and " + finding);
     if (beamsSideWithRival(found, scorer, finding))

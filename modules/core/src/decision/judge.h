@@ -24,7 +24,10 @@
 /// - not repeated: no motion a period of repeated structure off it (a door further along a
 ///   row of doors) lays nearly as much of what both scans saw on the target (repetition.h);
 /// - for the contours' own motion, the best along its weakest direction: refinements started
-///   along it out to the scan's RMS range reach no distinct motion that scores as well;
+///   along it out to the scan's RMS range reach no distinct motion that scores as well, nor one
+///   that lays clearly more of what both scans saw on the target (its contour and the walls
+///   between its returns: along a corridor the truth lays the source's near walls on the sparse
+///   returns ahead, off the target's contour, and scores below an alias of contour on contour);
 /// - not outvoted by the beams: where a distinct motion scores nearly as well (within twice the
 ///   tie), the best puts no more of both scans' returns, beam by beam, in the other scan's free
 ///   space than that rival, give or take the tie. The contours' stretches miss what the beams
@@ -53,10 +56,12 @@ struct Judged {
   /// The best-scoring motion distinct from `best` (motionDistance > kDistinctMotions) that the
   /// judge scored: among the candidates and in its checks (probes, the guess, the contours'
   /// hypotheses); the motion a period along repeated structure that fits what both scans saw
-  /// as well, when the check for repetition finds one. None when it scored no such motion.
+  /// as well, or one along the weakest direction that fits it better, when the checks find one.
+  /// None when it scored no such motion.
   std::optional<ScoredMotion> rival;
   /// The distinct motions a period along repeated structure that fit what both scans saw as
-  /// well as the best, when the check for repetition finds any (the first is the rival).
+  /// well as the best, or one along its weakest direction that fits it better, when the checks
+  /// find any (the first is the rival).
   std::vector<ScoredMotion> ties;
   /// Keeps `motion`, scored `score`, as the rival when it is distinct from the best and scores higher.
   void consider(const RefinementResult &motion, double score);
