@@ -49,12 +49,11 @@ std::function<bool(const Eigen::Matrix3d &)> backTo(const Eigen::Matrix3d &best)
 // stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
 constexpr double kMostOfTheContour = 0.5;
 
-// How `best` and `motion` fit the part of the source `samples` both let the target see, on its
-// surface: its contour and the walls between its returns (sharedViewFit, TargetSight::kReturnsAtBearing).
-SharedViewFit fitOnWhatBothSaw(const std::vector<Eigen::Vector2d> &samples, const RefinementResult &best,
-                               const Eigen::Matrix3d &motion, const RegistrationParams &params,
-                               RegistrationBuffers &buffers, Scorer &scorer) {
-  return sharedViewFit(samples, buffers.refiner, scorer.targetReturnsView(), best.transform, motion,
+// How `best` and `motion` fit the part of the source both let the target see, on its surface:
+// its contour and the walls between its returns (sharedViewFit, TargetSight::kReturnsAtBearing).
+SharedViewFit fitOnWhatBothSaw(const RefinementResult &best, const Eigen::Matrix3d &motion,
+                               const RegistrationParams &params, RegistrationBuffers &buffers, Scorer &scorer) {
+  return sharedViewFit(buffers.samples, buffers.refiner, scorer.targetReturnsView(), best.transform, motion,
                        params.refinement.min_distance, params.free_space.margin, TargetSight::kReturnsAtBearing);
 }
 
@@ -132,7 +131,7 @@ constexpr double kSweepStep = 0.5;
 // to form a contour, and the true motion lays the source's near walls on those sparse returns,
 // off the target's contour, while the alias lays contour on contour. On the part of the source
 // both motions let the target see, its surface taken as its contour and the walls between its
-// returns (fitOnWhatBothSaw, as the check for repeated structure weighs it), the truth fits
+// returns (sharedViewFit, as the check for repeated structure weighs it), the truth fits
 // better: a distinct motion that lays more than the tie's share more of that part on the target,
 // and that the free space contradicts no more than the best (give or take the tie), rivals the best.
 // Refinements start every kSweepStep m along the direction, both ways, from twice that out to
@@ -148,13 +147,23 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
   const double best_score = scorer.score(found.best);
   const double against_best = best.overlap - best_score;  // a score is the overlap less the contradiction
   // Whether the shared view of `samples`, where most of the source lies in it, favours `motion`
-  // by more than `lead`.
-  const auto sharedViewFavours = [&](const std::vector<Eigen::Vector2d> &samples, const Eigen::Matrix3d &motion,
-                                     double lead) {
+  // by more than `lead`. The best's spots of the samples (`spots`, computed on first use) are
+  // the same for every motion weighed against it.
+  const auto sharedViewFavours = [&](const std::vector<Eigen::Vector2d> &samples, std::optional<SampleSpots> &spots,
+                                     const Eigen::Matrix3d &motion, double lead) {
     if (!params.free_space.enabled) return false;
-    const SharedViewFit fit = fitOnWhatBothSaw(samples, best, motion, params, buffers, scorer);
+    const RangeView &view = scorer.targetReturnsView();
+    const double on_surface = params.refinement.min_distance, hidden = params.free_space.margin;
+    if (!spots) {
+      spots.emplace();
+      spotsOf(samples, buffers.refiner, view, best.transform, on_surface, hidden, TargetSight::kReturnsAtBearing,
+              *spots);
+    }
+    const SharedViewFit fit = sharedViewFit(*spots, samples, buffers.refiner, view, motion, on_surface, hidden,
+                                            TargetSight::kReturnsAtBearing);
     return fit.shared >= kMostOfTheContour && fit.second > fit.first + lead;
   };
+  std::optional<SampleSpots> sparse_spots, full_spots;
   RefinementParams from_start = params.refinement;
   from_start.max_distance = params.refinement.max_distance + 0.5 * kSweepStep;
   RefinementParams screening = from_start;
@@ -172,13 +181,14 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
       // A score is never above the overlap: only a start that overlaps enough pays for the free space.
       const bool scores_near =
           quick.overlap > best_score - 2.0 * kScoreTie && scorer.score(quick) > best_score - 2.0 * kScoreTie;
-      if (!scores_near && !sharedViewFavours(sparse, quick.transform, -2.0 * kScoreTie)) continue;
+      if (!scores_near && !sharedViewFavours(sparse, sparse_spots, quick.transform, -2.0 * kScoreTie)) continue;
       const RefinementResult r = buffers.refiner.refine(buffers.samples, quick.transform, from_start, near_best);
       if (motionDistance(r.transform, best.transform) <= kDistinctMotions) continue;
       const double score = scorer.score(r);
       found.consider(r, score);
       if (score > best_score - kScoreTie) return false;
-      if (r.overlap - score <= against_best + kScoreTie && sharedViewFavours(buffers.samples, r.transform, kScoreTie)) {
+      if (r.overlap - score <= against_best + kScoreTie &&
+          sharedViewFavours(buffers.samples, full_spots, r.transform, kScoreTie)) {
         keepTie(found, r, score);
         return false;
       }
@@ -299,7 +309,7 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
     found.consider(rival, score);
     if (score > best_score) return false;  // the best is not the best of what the judge weighed
     if (rival.overlap - score > against_best + kScoreTie) continue;
-    const SharedViewFit fit = fitOnWhatBothSaw(buffers.samples, best, rival.transform, params, buffers, scorer);
+    const SharedViewFit fit = fitOnWhatBothSaw(best, rival.transform, params, buffers, scorer);
     if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) keepTie(found, rival, score);
   }
   return found.ties.empty();

@@ -126,42 +126,86 @@ void periodShifts(const Eigen::Matrix3d &best, const ContourFeatures &source, co
   }
 }
 
-SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
-                            const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
-                            double on_surface, double hidden_margin, TargetSight sight) {
-  SharedViewFit fit;
-  if (samples.empty()) return fit;
-  // Whether a point (target frame) lies on the target's surface, and whether the target saw
-  // its spot: on its surface, or where it could have seen it and not behind what it saw.
-  struct Spot {
-    bool on_surface, seen;
-  };
+namespace {
+
+// Whether a point (target frame) lies on the target's surface, and whether the target saw its
+// spot: on its surface, or where it could have seen it and not behind what it saw (sharedViewFit).
+struct Spot {
+  bool on_surface, seen;
+};
+Spot spotOf(const Eigen::Vector2d &point, const ContourRefiner &refiner, const RangeView &target_view,
+            double on_surface, double hidden_margin, TargetSight sight) {
+  if (refiner.pairs(point, on_surface)) return Spot{true, true};
   const bool between_returns = sight == TargetSight::kReturnsAtBearing;
-  const auto spot = [&](const Eigen::Vector2d &point) {
-    if (refiner.pairs(point, on_surface)) return Spot{true, true};
-    const RangeView::Sight seen = target_view.sightOf(point, hidden_margin);
-    const bool in_view = between_returns ? seen != RangeView::Sight::kNoEvidence : target_view.reaches(point);
-    if (!in_view || seen == RangeView::Sight::kHidden) return Spot{false, false};
-    if (!between_returns) return Spot{false, true};
-    const double off = target_view.distanceToSurface(point);
-    return Spot{off >= 0.0 && off <= on_surface, true};
-  };
+  const RangeView::Sight seen = target_view.sightOf(point, hidden_margin);
+  const bool in_view = between_returns ? seen != RangeView::Sight::kNoEvidence : target_view.reaches(point);
+  if (!in_view || seen == RangeView::Sight::kHidden) return Spot{false, false};
+  if (!between_returns) return Spot{false, true};
+  const double off = target_view.distanceToSurface(point);
+  return Spot{off >= 0.0 && off <= on_surface, true};
+}
+
+// The fit from each sample's spot under the first motion, `first(k)`, and under the second,
+// `second(k)`, asked only where the target saw the first.
+template <typename First, typename Second>
+SharedViewFit fitOf(std::size_t samples, const First &first, const Second &second) {
+  SharedViewFit fit;
+  if (samples == 0) return fit;
   int shared = 0, on_first = 0, on_second = 0;
-  for (const Eigen::Vector2d &p : samples) {
-    const Spot a = spot(transformPoint(first, p));
+  for (std::size_t k = 0; k < samples; ++k) {
+    const Spot a = first(k);
     if (!a.seen) continue;
-    const Spot b = spot(transformPoint(second, p));
+    const Spot b = second(k);
     if (!b.seen) continue;
     ++shared;
     on_first += a.on_surface;
     on_second += b.on_surface;
   }
-  fit.shared = static_cast<double>(shared) / static_cast<double>(samples.size());
+  fit.shared = static_cast<double>(shared) / static_cast<double>(samples);
   if (shared > 0) {
     fit.first = static_cast<double>(on_first) / shared;
     fit.second = static_cast<double>(on_second) / shared;
   }
   return fit;
+}
+
+}  // namespace
+
+SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
+                            const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
+                            double on_surface, double hidden_margin, TargetSight sight) {
+  const auto spotUnder = [&](const Eigen::Matrix3d &motion) {
+    return [&, motion](std::size_t k) {
+      return spotOf(transformPoint(motion, samples[k]), refiner, target_view, on_surface, hidden_margin, sight);
+    };
+  };
+  return fitOf(samples.size(), spotUnder(first), spotUnder(second));
+}
+
+void spotsOf(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner, const RangeView &target_view,
+             const Eigen::Matrix3d &motion, double on_surface, double hidden_margin, TargetSight sight,
+             SampleSpots &spots) {
+  spots.seen.resize(samples.size());
+  spots.on_surface.resize(samples.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const Spot spot =
+        spotOf(transformPoint(motion, samples[k]), refiner, target_view, on_surface, hidden_margin, sight);
+    spots.seen[k] = spot.seen;
+    spots.on_surface[k] = spot.on_surface;
+  }
+}
+
+SharedViewFit sharedViewFit(const SampleSpots &first, const std::vector<Eigen::Vector2d> &samples,
+                            const ContourRefiner &refiner, const RangeView &target_view, const Eigen::Matrix3d &second,
+                            double on_surface, double hidden_margin, TargetSight sight) {
+  return fitOf(
+      samples.size(),
+      [&](std::size_t k) {
+        return Spot{first.on_surface[k] != 0, first.seen[k] != 0};
+      },
+      [&](std::size_t k) {
+        return spotOf(transformPoint(second, samples[k]), refiner, target_view, on_surface, hidden_margin, sight);
+      });
 }
 
 }  // namespace contour_reg::decision

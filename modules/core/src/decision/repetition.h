@@ -78,4 +78,21 @@ SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const C
                             const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
                             double on_surface, double hidden_margin, TargetSight sight);
 
+/// One motion's spots of the source samples as sharedViewFit weighs them: whether the target
+/// saw each sample moved by it, and whether it lies on the target's surface. Computed once for
+/// a motion weighed against many.
+struct SampleSpots {
+  std::vector<char> seen, on_surface;
+};
+
+/// The spots of `samples` moved by `motion` (sharedViewFit's test of each sample), into `spots`.
+void spotsOf(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner, const RangeView &target_view,
+             const Eigen::Matrix3d &motion, double on_surface, double hidden_margin, TargetSight sight,
+             SampleSpots &spots);
+
+/// sharedViewFit with the first motion's spots given (spotsOf, on the same samples, view and settings).
+SharedViewFit sharedViewFit(const SampleSpots &first, const std::vector<Eigen::Vector2d> &samples,
+                            const ContourRefiner &refiner, const RangeView &target_view, const Eigen::Matrix3d &second,
+                            double on_surface, double hidden_margin, TargetSight sight);
+
 }  // namespace contour_reg::decision
