@@ -49,12 +49,28 @@ std::function<bool(const Eigen::Matrix3d &)> backTo(const Eigen::Matrix3d &best)
 // stand against the contours' hypotheses (standsAgainstContours): "most of the contour".
 constexpr double kMostOfTheContour = 0.5;
 
-// How `best` and `motion` fit the part of the source both let the target see, on its surface:
-// its contour and the walls between its returns (sharedViewFit, TargetSight::kReturnsAtBearing).
-SharedViewFit fitOnWhatBothSaw(const RefinementResult &best, const Eigen::Matrix3d &motion,
+// The best's spots of some source samples (spotsOf), computed on first use: the same for every
+// motion weighed against the best. `spots` is working memory kept between registrations.
+struct BestSpots {
+  SampleSpots &spots;
+  bool computed = false;
+};
+
+// How `best` and `motion` fit the part of the source `samples` both let the target see, on its
+// surface: its contour and the walls between its returns (sharedViewFit,
+// TargetSight::kReturnsAtBearing). `best_spots` are the best's spots of `samples`.
+SharedViewFit fitOnWhatBothSaw(const std::vector<Eigen::Vector2d> &samples, BestSpots &best_spots,
+                               const RefinementResult &best, const Eigen::Matrix3d &motion,
                                const RegistrationParams &params, RegistrationBuffers &buffers, Scorer &scorer) {
-  return sharedViewFit(buffers.samples, buffers.refiner, scorer.targetReturnsView(), best.transform, motion,
-                       params.refinement.min_distance, params.free_space.margin, TargetSight::kReturnsAtBearing);
+  const RangeView &view = scorer.targetReturnsView();
+  const double on_surface = params.refinement.min_distance, hidden = params.free_space.margin;
+  if (!best_spots.computed) {
+    spotsOf(samples, buffers.refiner, view, best.transform, on_surface, hidden, TargetSight::kReturnsAtBearing,
+            best_spots.spots);
+    best_spots.computed = true;
+  }
+  return sharedViewFit(best_spots.spots, samples, buffers.refiner, view, motion, on_surface, hidden,
+                       TargetSight::kReturnsAtBearing);
 }
 
 // Keeps `motion`, scored `score`, among the distinct motions that fit what both scans saw as
@@ -147,23 +163,15 @@ bool unrivalledAlongWeakestDirection(Judged &found, const RegistrationParams &pa
   const double best_score = scorer.score(found.best);
   const double against_best = best.overlap - best_score;  // a score is the overlap less the contradiction
   // Whether the shared view of `samples`, where most of the source lies in it, favours `motion`
-  // by more than `lead`. The best's spots of the samples (`spots`, computed on first use) are
-  // the same for every motion weighed against it.
-  const auto sharedViewFavours = [&](const std::vector<Eigen::Vector2d> &samples, std::optional<SampleSpots> &spots,
+  // by more than `lead` (`spots`: the best's, fitOnWhatBothSaw).
+  const auto sharedViewFavours = [&](const std::vector<Eigen::Vector2d> &samples, BestSpots &spots,
                                      const Eigen::Matrix3d &motion, double lead) {
     if (!params.free_space.enabled) return false;
-    const RangeView &view = scorer.targetReturnsView();
-    const double on_surface = params.refinement.min_distance, hidden = params.free_space.margin;
-    if (!spots) {
-      spots.emplace();
-      spotsOf(samples, buffers.refiner, view, best.transform, on_surface, hidden, TargetSight::kReturnsAtBearing,
-              *spots);
-    }
-    const SharedViewFit fit = sharedViewFit(*spots, samples, buffers.refiner, view, motion, on_surface, hidden,
-                                            TargetSight::kReturnsAtBearing);
+    const SharedViewFit fit = fitOnWhatBothSaw(samples, spots, best, motion, params, buffers, scorer);
     return fit.shared >= kMostOfTheContour && fit.second > fit.first + lead;
   };
-  std::optional<SampleSpots> sparse_spots, full_spots;
+  thread_local SampleSpots sparse_memory, full_memory;
+  BestSpots sparse_spots{sparse_memory}, full_spots{full_memory};
   RefinementParams from_start = params.refinement;
   from_start.max_distance = params.refinement.max_distance + 0.5 * kSweepStep;
   RefinementParams screening = from_start;
@@ -302,6 +310,8 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
   const double best_score = scorer.score(found.best);
   const double against_best = best.overlap - best_score;
   const auto near_best = backTo(best.transform);  // a start that leads back to the best stops there
+  thread_local SampleSpots memory;
+  BestSpots best_spots{memory};
   for (const Eigen::Matrix3d &start : buffers.repetition.shifted) {
     const RefinementResult rival = buffers.refiner.refine(buffers.samples, start, params.refinement, near_best);
     if (motionDistance(rival.transform, best.transform) <= kDistinctMotions) continue;
@@ -309,7 +319,8 @@ bool standsAgainstRepetition(Judged &found, const RegistrationParams &params, Re
     found.consider(rival, score);
     if (score > best_score) return false;  // the best is not the best of what the judge weighed
     if (rival.overlap - score > against_best + kScoreTie) continue;
-    const SharedViewFit fit = fitOnWhatBothSaw(best, rival.transform, params, buffers, scorer);
+    const SharedViewFit fit =
+        fitOnWhatBothSaw(buffers.samples, best_spots, best, rival.transform, params, buffers, scorer);
     if (fit.shared >= kMostOfTheContour && fit.second > fit.first - kScoreTie) keepTie(found, rival, score);
   }
   return found.ties.empty();

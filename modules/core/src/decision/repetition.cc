@@ -145,41 +145,14 @@ Spot spotOf(const Eigen::Vector2d &point, const ContourRefiner &refiner, const R
   return Spot{off >= 0.0 && off <= on_surface, true};
 }
 
-// The fit from each sample's spot under the first motion, `first(k)`, and under the second,
-// `second(k)`, asked only where the target saw the first.
-template <typename First, typename Second>
-SharedViewFit fitOf(std::size_t samples, const First &first, const Second &second) {
-  SharedViewFit fit;
-  if (samples == 0) return fit;
-  int shared = 0, on_first = 0, on_second = 0;
-  for (std::size_t k = 0; k < samples; ++k) {
-    const Spot a = first(k);
-    if (!a.seen) continue;
-    const Spot b = second(k);
-    if (!b.seen) continue;
-    ++shared;
-    on_first += a.on_surface;
-    on_second += b.on_surface;
-  }
-  fit.shared = static_cast<double>(shared) / static_cast<double>(samples);
-  if (shared > 0) {
-    fit.first = static_cast<double>(on_first) / shared;
-    fit.second = static_cast<double>(on_second) / shared;
-  }
-  return fit;
-}
-
 }  // namespace
 
 SharedViewFit sharedViewFit(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner,
                             const RangeView &target_view, const Eigen::Matrix3d &first, const Eigen::Matrix3d &second,
                             double on_surface, double hidden_margin, TargetSight sight) {
-  const auto spotUnder = [&](const Eigen::Matrix3d &motion) {
-    return [&, motion](std::size_t k) {
-      return spotOf(transformPoint(motion, samples[k]), refiner, target_view, on_surface, hidden_margin, sight);
-    };
-  };
-  return fitOf(samples.size(), spotUnder(first), spotUnder(second));
+  thread_local SampleSpots first_spots;  // working memory, kept between calls (each thread its own)
+  spotsOf(samples, refiner, target_view, first, on_surface, hidden_margin, sight, first_spots);
+  return sharedViewFit(first_spots, samples, refiner, target_view, second, on_surface, hidden_margin, sight);
 }
 
 void spotsOf(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &refiner, const RangeView &target_view,
@@ -198,14 +171,23 @@ void spotsOf(const std::vector<Eigen::Vector2d> &samples, const ContourRefiner &
 SharedViewFit sharedViewFit(const SampleSpots &first, const std::vector<Eigen::Vector2d> &samples,
                             const ContourRefiner &refiner, const RangeView &target_view, const Eigen::Matrix3d &second,
                             double on_surface, double hidden_margin, TargetSight sight) {
-  return fitOf(
-      samples.size(),
-      [&](std::size_t k) {
-        return Spot{first.on_surface[k] != 0, first.seen[k] != 0};
-      },
-      [&](std::size_t k) {
-        return spotOf(transformPoint(second, samples[k]), refiner, target_view, on_surface, hidden_margin, sight);
-      });
+  SharedViewFit fit;
+  if (samples.empty()) return fit;
+  int shared = 0, on_first = 0, on_second = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    if (!first.seen[k]) continue;  // the second motion's spot is asked only where the target saw the first's
+    const Spot b = spotOf(transformPoint(second, samples[k]), refiner, target_view, on_surface, hidden_margin, sight);
+    if (!b.seen) continue;
+    ++shared;
+    on_first += first.on_surface[k] != 0;
+    on_second += b.on_surface;
+  }
+  fit.shared = static_cast<double>(shared) / static_cast<double>(samples.size());
+  if (shared > 0) {
+    fit.first = static_cast<double>(on_first) / shared;
+    fit.second = static_cast<double>(on_second) / shared;
+  }
+  return fit;
 }
 
 }  // namespace contour_reg::decision
