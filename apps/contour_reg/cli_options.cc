@@ -10,6 +10,7 @@
 
 #include "contour_reg/core/contour_features.h"
 #include "contour_reg/core/registration.h"
+#include "contour_reg/core/transform_estimation.h"
 #include "contour_reg/io/pose2d.h"
 #include "contour_reg/io/trajectory.h"
 
@@ -53,6 +54,52 @@ bool readScanPair(const ScanPair &pair, const io::LogReadOptions &read, io::Scan
   std::fprintf(stderr, "error: --scan %d, --to %d: %s has scans 0..%d\n", pair.scan, pair.target(), pair.input.c_str(),
                count - 1);
   return false;
+}
+
+void addReferenceOptions(CLI::App &command, ReferenceOptions &options, const std::string &reference_help) {
+  CLI::Option *reference = addMotionOption(command, "--reference", options.motion, reference_help);
+  CLI::Option *log_poses = command.add_flag(
+      "--log-poses", options.log_poses,
+      "The pair's true motion from the log's own poses (the corrected poses of the Radish logs; a raw log's "
+      "wheel odometry), as --reference");
+  CLI::Option *truth = command
+                           .add_option("--gt", options.ground_truth,
+                                       "The pair's true motion from this TUM ground truth, interpolated at the "
+                                       "scans' stamps, as --reference")
+                           ->check(CLI::ExistingFile);
+  reference->excludes(log_poses)->excludes(truth);
+  log_poses->excludes(reference)->excludes(truth);
+  truth->excludes(reference)->excludes(log_poses);
+}
+
+std::optional<io::Pose2D> referenceFromPoses(const ReferenceOptions &options, const ScanPair &pair,
+                                             const io::ScanLog &log) {
+  const io::LogEntry &a = log.entries[std::size_t(pair.target())], &b = log.entries[std::size_t(pair.scan)];
+  std::optional<io::Pose2D> target, source;
+  std::string from = options.ground_truth;
+  if (options.log_poses) {
+    target = a.odometry;
+    source = b.odometry;
+    from = pair.input + "'s poses";
+  } else {
+    std::string why;
+    const auto poses = groundTruthAtScans(options.ground_truth, log, why);
+    if (!poses) {
+      std::fprintf(stderr, "error: %s\n", why.c_str());
+      return std::nullopt;
+    }
+    target = (*poses)[std::size_t(pair.target())];
+    source = (*poses)[std::size_t(pair.scan)];
+  }
+  if (target && source) return io::between(*target, *source);
+  std::fprintf(stderr, "error: %s: no pose at scan %d (stamp %.6f s) or scan %d (stamp %.6f s)\n", from.c_str(),
+               pair.target(), a.scan.stamp, pair.scan, b.scan.stamp);
+  return std::nullopt;
+}
+
+Apart apart(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
+  return {(a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm(),
+          std::abs(std::remainder(yawOf(a) - yawOf(b), 2 * M_PI)) * 180 / M_PI};
 }
 
 void toRobotFrame(odometry::MatchResult &result, const io::Pose2D &mounting) {

@@ -326,6 +326,42 @@ void checkScanPair(const ScanPair &pair);
 /// stderr naming the log and its scans, when the log has no such scans.
 bool readScanPair(const ScanPair &pair, const io::LogReadOptions &read, io::ScanLog &log);
 
+/// A pair's true motion, when known, for the commands that answer one pair (`debug`,
+/// `register`): --reference X Y YAW, --log-poses or --gt FILE, at most one of them.
+struct ReferenceOptions {
+  std::optional<io::Pose2D> motion;  ///< --reference, in the frame of the command's --frame (yaw in rad)
+  bool log_poses = false;            ///< --log-poses: from the log's own poses
+  std::string ground_truth;          ///< --gt: from this TUM trajectory at the scans' stamps
+  /// Whether the reference comes from poses (--log-poses or --gt) rather than --reference.
+  bool fromPoses() const { return log_poses || !ground_truth.empty(); }
+};
+/// --reference (`reference_help` says what the command does with it), --log-poses and --gt,
+/// each excluding the others.
+void addReferenceOptions(CLI::App &command, ReferenceOptions &options, const std::string &reference_help);
+/// The robot's motion from the pair's target scan to its source scan by the poses --log-poses or
+/// --gt name (options.fromPoses()). None, with the error on stderr naming where the poses came
+/// from, when there is no pose at either scan or the ground truth's stamps do not increase.
+std::optional<io::Pose2D> referenceFromPoses(const ReferenceOptions &options, const ScanPair &pair,
+                                             const io::ScanLog &log);
+
+/// --reference-sigma M DEG: the reference's own error, added to each covariance for the NEES
+/// (`sigma` holds its default; `nees_of` says where the NEES is printed).
+inline void addReferenceSigmaOption(CLI::App &command, std::vector<double> &sigma, const std::string &nees_of) {
+  command
+      .add_option("--reference-sigma", sigma,
+                  "The reference's own error, added to each covariance for " + nees_of +
+                      " (m, deg; 0.05 1 suits the Radish logs' corrected poses, 0.02 0.5 the Kümmerle relations)")
+      ->expected(2)
+      ->capture_default_str()
+      ->check(nonNegative());
+}
+
+/// How far apart two motions are: translation (m) and rotation (deg, the yaw difference wrapped).
+struct Apart {
+  double metres = 0.0, degrees = 0.0;
+};
+Apart apart(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b);
+
 /// The motions and covariances of `result`, found in the laser's frame (the transform, the
 /// rejected motion, the alternatives), as the robot's, the laser mounted at `mounting`.
 void toRobotFrame(odometry::MatchResult &result, const io::Pose2D &mounting);

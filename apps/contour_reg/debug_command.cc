@@ -20,40 +20,12 @@ struct DebugOptions {
   ScanPair pair;
   std::string out;
   std::vector<std::string> methods;
-  PairMotions motions;  // in `frame`
+  std::optional<io::Pose2D> guess;  // in `frame`
+  ReferenceOptions reference;
   std::string frame = "laser";
-  bool log_poses = false;    // the reference from the log's own poses
-  std::string ground_truth;  // the reference from this TUM trajectory
   io::LogReadOptions read;
   MethodOptions method_options;
 };
-
-// The robot's poses at the pair's target and source scans, from the log's own poses or the
-// ground truth; false, with the error on stderr, when there are none.
-bool referencePoses(const DebugOptions &options, const io::ScanLog &log, std::optional<io::Pose2D> &target,
-                    std::optional<io::Pose2D> &source) {
-  const io::LogEntry &a = log.entries[std::size_t(options.pair.target())],
-                     &b = log.entries[std::size_t(options.pair.scan)];
-  std::string from = options.ground_truth;
-  if (options.log_poses) {
-    target = a.odometry;
-    source = b.odometry;
-    from = options.pair.input + "'s poses";
-  } else {
-    std::string why;
-    const auto poses = groundTruthAtScans(options.ground_truth, log, why);
-    if (!poses) {
-      std::fprintf(stderr, "error: %s\n", why.c_str());
-      return false;
-    }
-    target = (*poses)[std::size_t(options.pair.target())];
-    source = (*poses)[std::size_t(options.pair.scan)];
-  }
-  if (target && source) return true;
-  std::fprintf(stderr, "error: %s: no pose at scan %d (stamp %.6f s) or scan %d (stamp %.6f s)\n", from.c_str(),
-               options.pair.target(), a.scan.stamp, options.pair.scan, b.scan.stamp);
-  return false;
-}
 
 int runDebug(const DebugOptions &options) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
@@ -62,14 +34,13 @@ int runDebug(const DebugOptions &options) {
   const odometry::MatcherSettings settings = options.method_options.settings();
   DebugDumper dumper(options.out, settings);
   // The pictures are the laser's; with the log's mounting, motions given in the robot's frame are turned into it.
-  PairMotions motions = options.motions;
+  PairMotions motions{options.guess, options.reference.motion};
   if (options.frame == "robot" && log.laser_pose)
     for (std::optional<io::Pose2D> *motion : {&motions.guess, &motions.reference})
       if (*motion) *motion = io::laserMotion(**motion, *log.laser_pose);
-  if (options.log_poses || !options.ground_truth.empty()) {
-    std::optional<io::Pose2D> target, source;  // the robot's
-    if (!referencePoses(options, log, target, source)) return 1;
-    motions.reference = io::between(*target, *source);
+  if (options.reference.fromPoses()) {
+    motions.reference = referenceFromPoses(options.reference, options.pair, log);  // the robot's
+    if (!motions.reference) return 1;
     if (log.laser_pose) motions.reference = io::laserMotion(*motions.reference, *log.laser_pose);
   }
   for (const std::string &file : dumper.dumpPair(log, std::size_t(options.pair.target()),
@@ -87,26 +58,13 @@ void addDebugCommand(CLI::App &app) {
   command->add_option("--out", options->out, "Output folder")->required();
   command->add_option("--methods", options->methods, "Also draw these methods' alignments side by side")
       ->check(methodCheck());
-  addMotionOption(*command, "--guess", options->motions.guess,
+  addMotionOption(*command, "--guess", options->guess,
                   "Initial guess of the motion, in the frame of --frame (m, m, deg; default: none): every "
                   "registration drawn starts from it");
-  CLI::Option *reference =
-      addMotionOption(*command, "--reference", options->motions.reference,
+  addReferenceOptions(*command, options->reference,
                       "The pair's true motion, when known (a ground truth's), in the frame of --frame (m, m, deg): "
                       "methods_M_N.png shows the source moved by it first, and how far each method's motion lies from "
                       "it (without --methods, the contour method's)");
-  CLI::Option *log_poses = command->add_flag(
-      "--log-poses", options->log_poses,
-      "The pair's true motion from the log's own poses (the corrected poses of the Radish logs; a raw log's "
-      "wheel odometry), as --reference");
-  CLI::Option *truth = command
-                           ->add_option("--gt", options->ground_truth,
-                                        "The pair's true motion from this TUM ground truth, interpolated at the "
-                                        "scans' stamps, as --reference")
-                           ->check(CLI::ExistingFile);
-  reference->excludes(log_poses)->excludes(truth);
-  log_poses->excludes(reference)->excludes(truth);
-  truth->excludes(reference)->excludes(log_poses);
   addFrameOption(*command, options->frame, "--guess and --reference (the pictures are the laser's)");
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);

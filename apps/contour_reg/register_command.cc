@@ -10,6 +10,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "contour_reg/evaluation/metrics.h"
 #include "contour_reg/io/pose2d.h"
 
 namespace contour_reg::cli {
@@ -20,6 +21,8 @@ struct RegisterOptions {
   ScanPair pair;
   std::vector<std::string> methods{"contour"};
   std::optional<io::Pose2D> guess;  // in `frame`; none: no motion
+  ReferenceOptions reference;
+  std::vector<double> reference_sigma{0.0, 0.0};  // m, deg: the reference's own error, for the NEES
   std::string frame = "robot";
   io::LogReadOptions read;
   MethodOptions method_options;
@@ -43,7 +46,18 @@ std::string quoted(const std::string &text) {
   return out + "\"";
 }
 
-void printResult(const std::string &method, const odometry::MatchResult &r) {
+// How far a converged answer lies from the reference (m, deg) and, with a covariance, its
+// normalised error squared with the reference's own error added (`sigma`: m, deg).
+void printError(const odometry::MatchResult &r, const io::Pose2D &reference, const std::vector<double> &sigma) {
+  const Apart error = apart(r.transform, io::toMatrix(reference));
+  std::printf("  error: {m: %.4f, deg: %.3f}\n", error.metres, error.degrees);
+  if (!r.covariance.isZero())
+    std::printf("  nees: %.3f\n", evaluation::normalisedErrorSquared(io::toPose(r.transform), reference, r.covariance,
+                                                                     sigma[0], sigma[1] * M_PI / 180.0));
+}
+
+void printResult(const std::string &method, const odometry::MatchResult &r, const std::optional<io::Pose2D> &reference,
+                 const std::vector<double> &sigma) {
   std::printf("- method: %s\n", method.c_str());
   std::printf("  status: %s\n", r.converged ? "converged" : r.status.c_str());
   // A method that did not converge vouches for no motion: what it weighed is `declined`.
@@ -54,12 +68,20 @@ void printResult(const std::string &method, const odometry::MatchResult &r) {
       std::printf("  covariance: [%.4e, %.4e, %.4e, %.4e, %.4e, %.4e, %.4e, %.4e, %.4e]\n", c(0, 0), c(0, 1), c(0, 2),
                   c(1, 0), c(1, 1), c(1, 2), c(2, 0), c(2, 1), c(2, 2));
     }
+    if (reference) printError(r, *reference, sigma);
     if (r.overlap) std::printf("  overlap: %.3f\n", *r.overlap);
     if (r.score) std::printf("  score: %.3f\n", *r.score);
   } else {
     std::printf("  reason: %s\n", quoted(r.reason).c_str());
   }
-  if (r.rejected) std::printf("  %s: %s\n", r.converged ? "rival" : "declined", motionYaml(*r.rejected).c_str());
+  if (r.rejected) {
+    const char *kind = r.converged ? "rival" : "declined";
+    std::printf("  %s: %s\n", kind, motionYaml(*r.rejected).c_str());
+    if (reference) {
+      const Apart error = apart(*r.rejected, io::toMatrix(*reference));
+      std::printf("  %s_error: {m: %.4f, deg: %.3f}\n", kind, error.metres, error.degrees);
+    }
+  }
   if (!r.alternatives.empty()) {
     std::printf("  alternatives:\n");
     for (const RejectedMotion &alternative : r.alternatives)
@@ -80,18 +102,33 @@ int runRegister(const RegisterOptions &options) {
   const std::optional<io::Pose2D> mounting = options.frame == "robot" ? log.laser_pose : std::nullopt;
   io::Pose2D guess = options.guess.value_or(io::Pose2D{});
   if (mounting) guess = io::laserMotion(guess, *mounting);
+  // The reference as the answers are given: --reference in --frame, the poses' as the robot's.
+  std::optional<io::Pose2D> reference = options.reference.motion;
+  if (options.reference.fromPoses()) {
+    reference = referenceFromPoses(options.reference, pair, log);
+    if (!reference) return 1;
+    if (!mounting && log.laser_pose) reference = io::laserMotion(*reference, *log.laser_pose);
+  }
   std::printf("# scan %d (source, stamp %.6f s) onto scan %d (target, stamp %.6f s) of %s\n", pair.scan, source.stamp,
               pair.target(), target.stamp, pair.input.c_str());
   std::printf(
       "# motions and covariances in %s; motion: the source scan's pose in the target scan's frame (x m, y m, "
       "yaw deg); covariance: row-major x m, y m, yaw rad\n",
       odometry::frameDescription(mounting ? odometry::Frame::kRobot : odometry::Frame::kLaser, log).c_str());
+  if (reference)
+    std::printf(
+        "# reference: %s; error (rival_error, declined_error): each answer's (each motion weighed and not "
+        "taken) distance from it (m, deg), nees: its normalised error squared "
+        "under the answer's covariance plus %g m / %g deg for the reference's own error (3 on average for an "
+        "honest covariance, above %.2f outside its 99 %% ellipsoid)\n",
+        motionYaml(io::toMatrix(*reference)).c_str(), options.reference_sigma[0], options.reference_sigma[1],
+        evaluation::kNees99);
   const odometry::MatcherSettings settings = options.method_options.settings();
   for (const std::string &method : options.methods) {
     std::unique_ptr<odometry::ScanMatcher> matcher = odometry::makeScanMatcher(method, settings);
     odometry::MatchResult result = matcher->match(target, source, io::toMatrix(guess));
     if (mounting) toRobotFrame(result, *mounting);
-    printResult(method, result);
+    printResult(method, result, reference, options.reference_sigma);
   }
   return 0;
 }
@@ -108,7 +145,11 @@ void addRegisterCommand(CLI::App &app) {
       ->check(methodCheck());
   addMotionOption(*command, "--guess", options->guess,
                   "Initial guess of the motion, in the frame of --frame (m, m, deg; default: none)");
-  addFrameOption(*command, options->frame, "the motions, covariances and guess");
+  addReferenceOptions(*command, options->reference,
+                      "The pair's true motion, when known, in the frame of --frame (m, m, deg): each converged answer "
+                      "says how far it lies from it and, with a covariance, its NEES");
+  addReferenceSigmaOption(*command, options->reference_sigma, "each answer's NEES");
+  addFrameOption(*command, options->frame, "the motions, covariances, guess and reference");
   addReadOptions(*command, options->read);
   addMethodOptions(*command, options->method_options);
   command->callback([options]() {

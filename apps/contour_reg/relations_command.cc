@@ -48,15 +48,6 @@ struct ReferencedPair {
   io::Relation reference;
 };
 
-// How far apart two motions are: translation (m) and rotation (deg).
-struct Apart {
-  double metres = 0.0, degrees = 0.0;
-};
-Apart apart(const Eigen::Matrix3d &a, const Eigen::Matrix3d &b) {
-  return {(a.topRightCorner<2, 1>() - b.topRightCorner<2, 1>()).norm(),
-          std::abs(std::remainder(yawOf(a) - yawOf(b), 2 * M_PI)) * 180 / M_PI};
-}
-
 // One method's answer to one pair.
 struct Answer {
   bool converged = false, wrong = false;
@@ -398,13 +389,7 @@ void addRelationsCommand(CLI::App &app) {
   addFrameOption(*command, options->frame, "the motions and covariances");
   addMethodOptions(*command, options->method_options);
   command->add_option("--pairs-csv", options->pairs_csv, "Write one row per relation and method to this CSV file");
-  command
-      ->add_option("--reference-sigma", options->reference_sigma,
-                   "The reference's own error, added to each covariance for the NEES line (m, deg; 0.05 1 suits "
-                   "the Radish logs' corrected poses)")
-      ->expected(2)
-      ->capture_default_str()
-      ->check(nonNegative());
+  addReferenceSigmaOption(*command, options->reference_sigma, "the NEES line");
   command->add_option("--limit", options->limit, "At most this many relations (0: all)")->capture_default_str();
   addDeskewOption(*command, options->deskew);
   command->callback([options, relations, gap, truth]() {

@@ -55,6 +55,18 @@ expect_match("${LAST_OUT}" "- method: contour\n  status: low_overlap\n  reason: 
 if(LAST_OUT MATCHES "\n  (motion|covariance):")
   message(FATAL_ERROR "register printed a motion or covariance for a declined pair:\n${LAST_OUT}")
 endif()
+# With the pair's true motion (--gt, --log-poses or --reference), each converged answer says how far
+# it lies from it and, with a covariance, its NEES; a motion weighed and not taken says the same.
+# The ground truth gives 0.25 m straight ahead: the contour answer lies within 1 cm and 0.5 deg.
+expect_run(0 register ${LOG} --scan 1 --gt ${GT})
+expect_match("${LAST_OUT}" "# reference: {x_m: 0\\.2500, y_m: -?0\\.0000, yaw_deg: -?0\\.000}")
+expect_match("${LAST_OUT}" "  error: {m: 0\\.00[0-9]+, deg: 0\\.[0-4][0-9]+}\n  nees: [0-9]+\\.[0-9]+\n")
+# A reference 1 m ahead lies 0.75 m from that answer, far outside its covariance.
+expect_run(0 register ${LOG} --scan 1 --reference 1 0 0)
+expect_match("${LAST_OUT}" "  error: {m: 0\\.7[45][0-9]+, deg: 0\\.[0-4][0-9]+}\n  nees: [0-9][0-9][0-9]+\\.[0-9]+\n")
+# Scan 90 lies 20.5 m and 90 deg from scan 0: the motion the contour method declined is far from it.
+expect_run(0 register ${LOG} --scan 90 --to 0 --gt ${GT})
+expect_match("${LAST_OUT}" "  declined_error: {m: [1-9][0-9]\\.[0-9]+, deg: ")
 
 # evaluate prints the paper's metric against the ground truth.
 expect_run(0 evaluate ${WORK_DIR}/contour.tum --gt ${GT})
@@ -182,6 +194,9 @@ expect_run(0 register ${WORK_DIR}/mounted.log --scan 1)
 expect_match("${LAST_OUT}" "  motion: {x_m: 0\\.2[45][0-9]+, y_m: -?0\\.00[0-9]+, yaw_deg: -?0\\.[0-4][0-9]+}")
 expect_run(0 register ${WORK_DIR}/mounted.log --scan 1 --frame laser)
 expect_match("${LAST_OUT}" "  motion: {x_m: 0\\.23[0-9]+, y_m: -0\\.0[78][0-9]+, yaw_deg: -?0\\.[0-4][0-9]+}")
+# The ground truth holds the robot's poses: as the laser's, the reference is the laser's motion too.
+expect_run(0 register ${WORK_DIR}/mounted.log --scan 1 --frame laser --gt ${WORK_DIR}/mounted.gt.tum)
+expect_match("${LAST_OUT}" "  error: {m: 0\\.00[0-9]+, deg: 0\\.[0-4][0-9]+}")
 # The wheel odometry left out, a guess from it is no guess at all: the tool says so.
 expect_run(0 odometry ${LOG} --guess odom --no-wheel-odometry --output ${WORK_DIR}/no-wheels.tum)
 expect_match("${LAST_ERR}" "warning: --guess odom, but .*L-hokuyo-2hz.clf has no wheel odometry")
