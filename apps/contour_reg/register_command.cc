@@ -46,11 +46,18 @@ std::string quoted(const std::string &text) {
   return out + "\"";
 }
 
-// How far a converged answer lies from the reference (m, deg) and, with a covariance, its
-// normalised error squared with the reference's own error added (`sigma`: m, deg).
+// How far `motion` lies from the reference, as a YAML flow map (m, deg).
+std::string errorYaml(const Eigen::Matrix3d &motion, const io::Pose2D &reference) {
+  const Apart error = apart(motion, io::toMatrix(reference));
+  char text[64];
+  std::snprintf(text, sizeof text, "{m: %.4f, deg: %.3f}", error.metres, error.degrees);
+  return text;
+}
+
+// How far a converged answer lies from the reference and, with a covariance, its normalised
+// error squared with the reference's own error added (`sigma`: m, deg).
 void printError(const odometry::MatchResult &r, const io::Pose2D &reference, const std::vector<double> &sigma) {
-  const Apart error = apart(r.transform, io::toMatrix(reference));
-  std::printf("  error: {m: %.4f, deg: %.3f}\n", error.metres, error.degrees);
+  std::printf("  error: %s\n", errorYaml(r.transform, reference).c_str());
   if (!r.covariance.isZero())
     std::printf("  nees: %.3f\n", evaluation::normalisedErrorSquared(io::toPose(r.transform), reference, r.covariance,
                                                                      sigma[0], sigma[1] * M_PI / 180.0));
@@ -77,10 +84,7 @@ void printResult(const std::string &method, const odometry::MatchResult &r, cons
   if (r.rejected) {
     const char *kind = r.converged ? "rival" : "declined";
     std::printf("  %s: %s\n", kind, motionYaml(*r.rejected).c_str());
-    if (reference) {
-      const Apart error = apart(*r.rejected, io::toMatrix(*reference));
-      std::printf("  %s_error: {m: %.4f, deg: %.3f}\n", kind, error.metres, error.degrees);
-    }
+    if (reference) std::printf("  %s_error: %s\n", kind, errorYaml(*r.rejected, *reference).c_str());
   }
   if (!r.alternatives.empty()) {
     std::printf("  alternatives:\n");
