@@ -9,6 +9,7 @@ find_package(PCL 1.10 REQUIRED COMPONENTS common search kdtree features filters 
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
 find_package(ZLIB REQUIRED)
 find_package(yaml-cpp REQUIRED)
+find_package(SQLite3 REQUIRED)
 find_package(Threads REQUIRED)
 option(CONTOUR_REG_WITH_ROSBAG "Read ROS 1 bags when Debian's rosbag_storage is installed" ON)
 if(CONTOUR_REG_WITH_ROSBAG)

@@ -37,7 +37,9 @@ void printReadReport(const io::ScanLog &log) {
 }
 
 void addScanPairOptions(CLI::App &command, ScanPair &pair, const std::string &scan_help) {
-  command.add_option("input", pair.input, "CARMEN log, ROS bag or PCD folder")->required()->check(CLI::ExistingPath);
+  command.add_option("input", pair.input, "CARMEN log, ROS 1 or ROS 2 bag or PCD folder")
+      ->required()
+      ->check(CLI::ExistingPath);
   command.add_option("--scan", pair.scan, scan_help)->capture_default_str()->check(nonNegative());
   command.add_option("--to", pair.to, "Target scan of the pair (default: the scan before)")->check(nonNegative());
 }

@@ -32,8 +32,8 @@ inline CLI::Validator nonNegative() { return inRange(0.0, std::numeric_limits<do
 /// ground truth and relations are looked for (STEM.gt.tum, STEM.relations).
 inline std::string logStem(const std::string &path) {
   std::filesystem::path p(path);
-  while (p.has_extension() &&
-         (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" || p.extension() == ".bag"))
+  while (p.has_extension() && (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" ||
+                               p.extension() == ".bag" || p.extension() == ".db3"))
     p = p.stem();
   return p.filename().string();
 }

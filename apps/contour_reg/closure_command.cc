@@ -173,7 +173,7 @@ void addClosureCommand(CLI::App &app) {
       "closure",
       "Check the covariance on a log without a reference: register scans k -> k + 1, k + 1 -> k + 2 and "
       "k -> k + 2 from a zero guess and weigh how far they fail to compose");
-  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
+  command->add_option("input", options->input, "CARMEN log, ROS 1 or ROS 2 bag or PCD folder")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();

@@ -348,7 +348,7 @@ void addCompareCommand(CLI::App &app) {
   auto options = std::make_shared<CompareOptions>();
   CLI::App *command =
       app.add_subcommand("compare", "Run several methods on the same scans: one table of accuracy and speed");
-  command->add_option("inputs", options->inputs, "CARMEN logs, ROS bags or PCD folders")
+  command->add_option("inputs", options->inputs, "CARMEN logs, ROS 1 or ROS 2 bags or PCD folders")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--methods", options->methods, "Methods to run")->check(methodCheck())->capture_default_str();

@@ -50,7 +50,7 @@ int runFeatures(const FeaturesOptions &options) {
 void addFeaturesCommand(CLI::App &app) {
   auto options = std::make_shared<FeaturesOptions>();
   CLI::App *command = app.add_subcommand("features", "Print the special points (corners) of scans of a log");
-  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
+  command->add_option("input", options->input, "CARMEN log, ROS 1 or ROS 2 bag or PCD folder")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--scan", options->scan, "Index of the scan, in stamp order")

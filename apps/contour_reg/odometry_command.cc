@@ -96,7 +96,9 @@ int runOdometryCommand(const OdometryCommandOptions &options) {
 void addOdometryCommand(CLI::App &app) {
   auto options = std::make_shared<OdometryCommandOptions>();
   CLI::App *command = app.add_subcommand("odometry", "Laser odometry: chain scan registrations into a TUM trajectory");
-  command->add_option("input", options->input, "CARMEN log, ROS bag (.bag) or folder of PCD scans")
+  command
+      ->add_option("input", options->input,
+                   "CARMEN log, ROS 1 bag (.bag), ROS 2 bag (folder or .db3) or folder of PCD scans")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--method,-m", options->method, "Registration method")

@@ -361,7 +361,7 @@ int runRelations(const RelationsOptions &options) {
 void addRelationsCommand(CLI::App &app) {
   auto options = std::make_shared<RelationsOptions>();
   CLI::App *command = app.add_subcommand("relations", "Register the scan pairs of a relations file from a zero guess");
-  command->add_option("input", options->input, "CARMEN log, ROS bag or PCD folder")
+  command->add_option("input", options->input, "CARMEN log, ROS 1 or ROS 2 bag or PCD folder")
       ->required()
       ->check(CLI::ExistingPath);
   auto *relations = command->add_option("--relations", options->relations, "Kuemmerle et al. relations file")

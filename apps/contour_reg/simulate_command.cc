@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "contour_reg/io/carmen.h"
 #include "contour_reg/io/rosbag.h"
+#include "contour_reg/io/rosbag2.h"
 #include "contour_reg/io/trajectory.h"
 #include "scenario.h"
 
@@ -26,8 +27,11 @@ int runSimulate(const SimulateOptions &options) {
   const auto &waypoints = scenario.paths.at(options.path);
   const simulation::RunSettings settings = runSettings(options.scenario, options.rate, options.seed);
   const simulation::SimulatedRun run = simulation::simulateRun(scenario.world, waypoints, settings);
-  if (std::filesystem::path(options.output).extension() == ".bag")
+  const std::filesystem::path extension = std::filesystem::path(options.output).extension();
+  if (extension == ".bag")
     io::writeRosbag(options.output, run.log);
+  else if (extension == ".db3")
+    io::writeRosbag2(options.output, run.log);
   else
     io::writeCarmen(options.output, run.log);
   io::writeTum(options.ground_truth, run.ground_truth);
@@ -46,7 +50,7 @@ void addSimulateCommand(CLI::App &app) {
   command
       ->add_option("--output,-o,--out", options->output,
                    "Log to write: a ROS 1 bag (.bag: /scan with the beam timing of --motion continuous, "
-                   "/odom) or a CARMEN log (any other name)")
+                   "/odom), the sqlite3 file of a ROS 2 bag (.db3: the same topics) or a CARMEN log (any other name)")
       ->required();
   command->add_option("--gt", options->ground_truth,
                       "TUM ground truth to write (default: OUTPUT_STEM.gt.tum beside the log, where compare finds it)");

@@ -9,6 +9,7 @@
 #include "contour_reg/io/carmen.h"
 #include "contour_reg/io/pcd_folder.h"
 #include "contour_reg/io/rosbag.h"
+#include "contour_reg/io/rosbag2.h"
 
 namespace contour_reg::io {
 
@@ -17,15 +18,14 @@ namespace {
 ScanLog readAny(const std::string &path, const LogReadOptions &options) {
   namespace fs = std::filesystem;
   std::error_code error;
+  RosbagOptions bag;
+  bag.scan_topic = options.scan_topic;
+  bag.odometry_topic = options.odometry_topic;
+  bag.max_range = options.max_range;
+  bag.max_beams = options.max_beams;
+  if (isRosbag2(path)) return readRosbag2(path, bag);
   if (fs::is_directory(path, error)) return readPcdFolder(path, options.max_range);
-  if (fs::path(path).extension() == ".bag") {
-    RosbagOptions bag;
-    bag.scan_topic = options.scan_topic;
-    bag.odometry_topic = options.odometry_topic;
-    bag.max_range = options.max_range;
-    bag.max_beams = options.max_beams;
-    return readRosbag(path, bag);
-  }
+  if (fs::path(path).extension() == ".bag") return readRosbag(path, bag);
   CarmenOptions carmen;
   carmen.max_range = options.max_range;
   carmen.max_beams = options.max_beams;

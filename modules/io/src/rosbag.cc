@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "bag_messages.h"
 #include "log_assembly.h"
 #include "rosbag_check.h"
 
@@ -53,12 +54,6 @@ std::string topicToRead(const rosbag::Bag &bag, const std::string &path, const s
                   (carried.empty() ? "it has none" : "it has " + carried) + ")");
 }
 
-std::string frameName(std::string name) { return name.empty() || name[0] != '/' ? name : name.substr(1); }
-
-double yawOf(const geometry_msgs::Quaternion &q) {
-  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
-}
-
 geometry_msgs::Quaternion quaternionOf(double yaw) {
   geometry_msgs::Quaternion q;
   q.z = std::sin(0.5 * yaw);
@@ -66,57 +61,21 @@ geometry_msgs::Quaternion quaternionOf(double yaw) {
   return q;
 }
 
-// The transforms of a bag's tf tree that do not move: each child frame's first pose in its
-// parent, planar part.
-struct TransformTree {
-  std::map<std::string, std::pair<std::string, Pose2D>> parent_of;  // child -> (parent, child in parent)
+double yawOf(const geometry_msgs::Quaternion &q) { return detail::yawOfQuaternion(q.x, q.y, q.z, q.w); }
 
-  void add(const tf2_msgs::TFMessage &message) {
-    for (const geometry_msgs::TransformStamped &t : message.transforms) {
-      const Pose2D pose{t.transform.translation.x, t.transform.translation.y, yawOf(t.transform.rotation)};
-      if (std::isfinite(pose.x + pose.y + pose.yaw))
-        parent_of.emplace(frameName(t.child_frame_id), std::make_pair(frameName(t.header.frame_id), pose));
-    }
-  }
-
-  // `frame`'s pose in `base`, through its chain of parents; none when the chain does not reach it.
-  std::optional<Pose2D> poseIn(const std::string &base, std::string frame) const {
-    Pose2D pose{};
-    for (std::size_t depth = 0; depth < 32; ++depth) {
-      if (frame == base) return pose;
-      const auto up = parent_of.find(frame);
-      if (up == parent_of.end()) return std::nullopt;
-      pose = compose(up->second.second, pose);
-      frame = up->second.first;
-    }
-    return std::nullopt;
-  }
-};
-
-LogEntry toEntry(const sensor_msgs::LaserScan &message, double max_range) {
-  LogEntry entry;
-  LaserScan &scan = entry.scan;
+detail::ScanMessage scanMessage(const sensor_msgs::LaserScan &message) {
+  detail::ScanMessage scan;
   scan.stamp = message.header.stamp.toSec();
+  scan.frame_id = message.header.frame_id;
   scan.angle_min = message.angle_min;
+  scan.angle_max = message.angle_max;
   scan.angle_increment = message.angle_increment;
-  scan.range_min = std::max(0.0f, message.range_min);
-  scan.range_max = message.range_max > 0.0f ? std::min<double>(message.range_max, max_range) : max_range;
-  scan.ranges.resize(message.ranges.size());
-  for (std::size_t n = 0; n < message.ranges.size(); ++n)
-    scan.ranges[n] = scan.isValidRange(message.ranges[n]) ? message.ranges[n] : std::numeric_limits<float>::quiet_NaN();
-  return entry;
-}
-
-// Why the message's beam timing cannot be used (empty when it can): beams are taken in
-// index order, time_increment apart, and the sweep fits in the scan period (scan_time).
-std::string beamTimingProblem(const sensor_msgs::LaserScan &message) {
-  const double increment = message.time_increment, period = message.scan_time;
-  if (!std::isfinite(increment) || increment < 0.0)
-    return "time_increment " + std::to_string(increment) + " s is not a beam interval >= 0";
-  const double sweep = increment * static_cast<double>(message.ranges.size() - 1);
-  if (std::isfinite(period) && period > 0.0 && sweep > 1.01 * period)
-    return "the sweep (" + std::to_string(sweep) + " s) is longer than scan_time (" + std::to_string(period) + " s)";
-  return {};
+  scan.time_increment = message.time_increment;
+  scan.scan_time = message.scan_time;
+  scan.range_min = message.range_min;
+  scan.range_max = message.range_max;
+  scan.ranges = message.ranges;
+  return scan;
 }
 
 // ROS's deserialization sizes an array from the length the message declares before it checks
@@ -177,7 +136,7 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   ScanLog log;
   log.source = path;
   std::vector<StampedPose> odometry;
-  TransformTree tree;
+  detail::TransformTree tree;
   std::string scan_frame, base_frame;  // of the first scan and the first odometry message
   const detail::BagCheck check = detail::checkBagStructure(path);
   if (!check.fatal.empty()) throw ReadError(path + ": not a readable ROS 1 bag: " + check.fatal);
@@ -215,26 +174,19 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
       try {
         if (message.getTopic() == scan_topic) {
           auto scan = decoded<sensor_msgs::LaserScan>(message, laserScanFits);
-          if (!scan) {
+          const bool first = log.entries.empty();
+          if (!scan)
             log.report.add(where, index, "not a sensor_msgs/LaserScan");
-          } else if (scan->ranges.size() < 2 || scan->ranges.size() > options.max_beams) {
-            log.report.add(where, index, "bad beam count " + std::to_string(scan->ranges.size()));
-          } else if (!std::isfinite(scan->angle_min) || !std::isfinite(scan->angle_increment) ||
-                     scan->angle_increment == 0.0f) {
-            log.report.add(where, index, "bad beam geometry");
-          } else {
-            if (log.entries.empty()) scan_frame = frameName(scan->header.frame_id);
-            log.entries.push_back(toEntry(*scan, options.max_range));
-            const std::string timing = beamTimingProblem(*scan);
-            if (timing.empty())
-              log.entries.back().scan.time_increment = scan->time_increment;
-            else
-              log.report.add(where, index, timing + ": the scan is read without beam timing");
-          }
+          else if (detail::addScan(scanMessage(*scan), options.max_range, options.max_beams, where, index, log) &&
+                   first)
+            scan_frame = detail::frameName(scan->header.frame_id);
         } else if (message.getTopic() != odometry_topic) {
-          if (auto transforms = decoded<tf2_msgs::TFMessage>(message, transformsFit)) tree.add(*transforms);
+          if (auto transforms = decoded<tf2_msgs::TFMessage>(message, transformsFit))
+            for (const geometry_msgs::TransformStamped &t : transforms->transforms)
+              tree.add(t.header.frame_id, t.child_frame_id,
+                       {t.transform.translation.x, t.transform.translation.y, yawOf(t.transform.rotation)});
         } else if (auto odom = message.instantiate<nav_msgs::Odometry>()) {
-          if (base_frame.empty()) base_frame = frameName(odom->child_frame_id);
+          if (base_frame.empty()) base_frame = detail::frameName(odom->child_frame_id);
           const auto &pose = odom->pose.pose;
           const Pose2D p{pose.position.x, pose.position.y, yawOf(pose.orientation)};
           if (std::isfinite(p.x + p.y + p.yaw))
@@ -251,12 +203,7 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   } catch (const std::exception &error) {
     throw ReadError(path + ": not a readable ROS 1 bag: " + error.what());
   }
-  if (log.entries.empty())
-    throw ReadError(path + ": no usable scan in " + std::to_string(log.report.lines) + " messages" +
-                    (log.report.problems.empty() ? "" : " (first problem: " + log.report.problems.front() + ")"));
-  // The mounting: the scan's frame in the robot's, the odometry's child frame (base_link without odometry).
-  if (!scan_frame.empty()) log.laser_pose = tree.poseIn(base_frame.empty() ? "base_link" : base_frame, scan_frame);
-  detail::finishLog(log, std::move(odometry));
+  detail::finishBagLog(path, tree, scan_frame, base_frame, std::move(odometry), log);
   return log;
 }
 
@@ -289,27 +236,19 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
       // A bag's record time must be after its epoch; the header keeps the scan's own stamp.
       const ros::Time stamp(scan.stamp);
       const ros::Time recorded = std::max(stamp, ros::TIME_MIN);
+      const detail::ScanMessage written = detail::scanMessageOf(scan);
       sensor_msgs::LaserScan message;
       message.header.seq = sequence++;
       message.header.stamp = stamp;
-      message.header.frame_id = "laser";
-      message.angle_min = static_cast<float>(scan.angle_min);
-      message.angle_increment = static_cast<float>(scan.angle_increment);
-      message.angle_max = static_cast<float>(scan.bearing(scan.ranges.empty() ? 0 : scan.ranges.size() - 1));
-      message.time_increment = static_cast<float>(scan.time_increment);
-      // A spinning LIDAR's period: one turn of beams (0 without timing).
-      const bool timed = scan.time_increment > 0.0 && scan.angle_increment != 0.0;
-      message.scan_time =
-          timed ? static_cast<float>(scan.time_increment / beamInterval(1.0, scan.angle_increment)) : 0.0f;
-      message.range_min = static_cast<float>(scan.range_min);
-      float farthest = 0.0f;
-      message.ranges.resize(scan.ranges.size());
-      for (std::size_t n = 0; n < scan.ranges.size(); ++n) {
-        const bool valid = scan.isValidRange(scan.ranges[n]);
-        message.ranges[n] = valid ? scan.ranges[n] : std::numeric_limits<float>::infinity();
-        if (valid) farthest = std::max(farthest, scan.ranges[n]);
-      }
-      message.range_max = scan.range_max > 0.0 ? static_cast<float>(scan.range_max) : std::nextafter(farthest, 1e9f);
+      message.header.frame_id = written.frame_id;
+      message.angle_min = written.angle_min;
+      message.angle_increment = written.angle_increment;
+      message.angle_max = written.angle_max;
+      message.time_increment = written.time_increment;
+      message.scan_time = written.scan_time;
+      message.range_min = written.range_min;
+      message.range_max = written.range_max;
+      message.ranges = written.ranges;
       if (sequence == 1 && log.laser_pose) {
         // The mounting, as a robot's static transform publisher gives it, with the first scan.
         geometry_msgs::TransformStamped mounting;

@@ -1,7 +1,8 @@
 #pragma once
 /// @file read_log.h
 /// One entry point for every scan source: a CARMEN log (`.clf`, `.log`, `.gz`, anything
-/// else), a ROS 1 bag (`.bag`) or a folder of PCD scans (a directory).
+/// else), a ROS 1 bag (`.bag`), a ROS 2 bag (its folder, or a `.db3` file) or a folder of PCD
+/// scans (a directory).
 
 #include <optional>
 #include <string>
@@ -13,8 +14,8 @@ namespace contour_reg::io {
 struct LogReadOptions {
   double max_range = 40.0;         ///< m, readings at or above are no-return
   std::size_t max_beams = 100000;  ///< scans announcing more beams are rejected
-  std::string scan_topic;          ///< bags: sensor_msgs/LaserScan topic ("": the first one)
-  std::string odometry_topic;      ///< bags: nav_msgs/Odometry topic ("": the first one)
+  std::string scan_topic;          ///< bags: the LaserScan topic ("": the first one)
+  std::string odometry_topic;      ///< bags: the Odometry topic ("": the first one)
   /// s per turn of a spinning LIDAR, for scans that carry no beam timing of their own (CARMEN
   /// lines and PCD files never do): beams are then taken in index order (counter-clockwise,
   /// as sensor_msgs orders them) scan_period * angle_increment / 2 pi apart, the first at the
