@@ -11,7 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libeigen3-dev libpcl-dev libflann-dev libopencv-dev
-          libcli11-dev zlib1g-dev libyaml-cpp-dev libsqlite3-dev libgtest-dev libbenchmark-dev
+          libcli11-dev zlib1g-dev libyaml-cpp-dev libsqlite3-dev libzstd-dev liblz4-dev libgtest-dev libbenchmark-dev
           librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev clang-format
           python3-dev python3-numpy python3-pytest pybind11-dev parallel)
 

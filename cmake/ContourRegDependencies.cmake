@@ -9,7 +9,12 @@ find_package(PCL 1.10 REQUIRED COMPONENTS common search kdtree features filters 
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
 find_package(ZLIB REQUIRED)
 find_package(yaml-cpp REQUIRED)
+# ROS 2 bags: SQLite for the sqlite3 storage, Zstandard and LZ4 for the chunks of MCAP files.
 find_package(SQLite3 REQUIRED)
+find_path(ZSTD_INCLUDE_DIR zstd.h REQUIRED)
+find_library(ZSTD_LIBRARY zstd REQUIRED)
+find_path(LZ4_INCLUDE_DIR lz4frame.h REQUIRED)
+find_library(LZ4_LIBRARY lz4 REQUIRED)
 find_package(Threads REQUIRED)
 option(CONTOUR_REG_WITH_ROSBAG "Read ROS 1 bags when Debian's rosbag_storage is installed" ON)
 if(CONTOUR_REG_WITH_ROSBAG)

@@ -28,12 +28,12 @@ inline CLI::Validator positive() { return inRange(0.0, std::numeric_limits<doubl
 /// Numbers >= 0.
 inline CLI::Validator nonNegative() { return inRange(0.0, std::numeric_limits<double>::infinity()); }
 
-/// A log's name without its folder and its log extensions (.gz, .clf, .log, .bag): where its
+/// A log's name without its folder and its log extensions (.gz, .clf, .log, .bag, .db3, .mcap): where its
 /// ground truth and relations are looked for (STEM.gt.tum, STEM.relations).
 inline std::string logStem(const std::string &path) {
   std::filesystem::path p(path);
   while (p.has_extension() && (p.extension() == ".gz" || p.extension() == ".clf" || p.extension() == ".log" ||
-                               p.extension() == ".bag" || p.extension() == ".db3"))
+                               p.extension() == ".bag" || p.extension() == ".db3" || p.extension() == ".mcap"))
     p = p.stem();
   return p.filename().string();
 }

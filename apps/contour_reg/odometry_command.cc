@@ -98,7 +98,7 @@ void addOdometryCommand(CLI::App &app) {
   CLI::App *command = app.add_subcommand("odometry", "Laser odometry: chain scan registrations into a TUM trajectory");
   command
       ->add_option("input", options->input,
-                   "CARMEN log, ROS 1 bag (.bag), ROS 2 bag (folder or .db3) or folder of PCD scans")
+                   "CARMEN log, ROS 1 bag (.bag), ROS 2 bag (folder, .db3 or .mcap) or folder of PCD scans")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--method,-m", options->method, "Registration method")

@@ -30,7 +30,7 @@ int runSimulate(const SimulateOptions &options) {
   const std::filesystem::path extension = std::filesystem::path(options.output).extension();
   if (extension == ".bag")
     io::writeRosbag(options.output, run.log);
-  else if (extension == ".db3")
+  else if (extension == ".db3" || extension == ".mcap")
     io::writeRosbag2(options.output, run.log);
   else
     io::writeCarmen(options.output, run.log);
@@ -50,7 +50,8 @@ void addSimulateCommand(CLI::App &app) {
   command
       ->add_option("--output,-o,--out", options->output,
                    "Log to write: a ROS 1 bag (.bag: /scan with the beam timing of --motion continuous, "
-                   "/odom), the sqlite3 file of a ROS 2 bag (.db3: the same topics) or a CARMEN log (any other name)")
+                   "/odom), a ROS 2 bag's storage file (.db3: sqlite3, .mcap: MCAP; the same topics) or a CARMEN log "
+                   "(any other name)")
       ->required();
   command->add_option("--gt", options->ground_truth,
                       "TUM ground truth to write (default: OUTPUT_STEM.gt.tum beside the log, where compare finds it)");

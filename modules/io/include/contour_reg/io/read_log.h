@@ -1,7 +1,7 @@
 #pragma once
 /// @file read_log.h
 /// One entry point for every scan source: a CARMEN log (`.clf`, `.log`, `.gz`, anything
-/// else), a ROS 1 bag (`.bag`), a ROS 2 bag (its folder, or a `.db3` file) or a folder of PCD
+/// else), a ROS 1 bag (`.bag`), a ROS 2 bag (its folder, or a `.db3` or `.mcap` file) or a folder of PCD
 /// scans (a directory).
 
 #include <optional>

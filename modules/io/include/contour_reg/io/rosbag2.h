@@ -1,16 +1,18 @@
 #pragma once
 /// @file rosbag2.h
-/// ROS 2 bags stored in sqlite3 (rosbag2's default storage through ROS 2 Humble): a bag's
-/// folder (its metadata.yaml names the .db3 files, read in its order) or one .db3 file, with
-/// sensor_msgs/msg/LaserScan, nav_msgs/msg/Odometry and tf2_msgs/msg/TFMessage messages in CDR,
-/// read with SQLite and no ROS installation.
+/// ROS 2 bags in either of rosbag2's storages, sqlite3 (.db3, the default through ROS 2
+/// Humble) and MCAP (.mcap, from Iron on; chunks uncompressed, LZ4 or Zstandard): a bag's
+/// folder (its metadata.yaml names the storage files, read in its order) or one storage
+/// file, with sensor_msgs/msg/LaserScan, nav_msgs/msg/Odometry and tf2_msgs/msg/TFMessage
+/// messages in CDR, read with SQLite, zstd and lz4 and no ROS installation.
 ///
 /// What is read is what readRosbag reads of a ROS 1 bag: a scan's stamp is its header stamp,
 /// its odometry the Odometry pose interpolated at that stamp, its beam timing the message's
 /// time_increment, the laser's mounting the first scan's frame in the odometry's child frame
 /// (base_link without odometry) through the TFMessage topics' first transforms of each
 /// frame. A message that cannot be decoded is skipped and reported with its file, topic and
-/// index. Bags in MCAP storage are named as such: `ros2 bag convert` writes them as sqlite3.
+/// index; an MCAP chunk that cannot be read (it does not decompress or match its CRC) with its
+/// file and byte, and its messages are not read.
 
 #include <string>
 
@@ -20,19 +22,21 @@
 namespace contour_reg::io {
 
 /// Whether `path` is a ROS 2 bag by its name: a .db3 or .mcap file, or a folder with a
-/// metadata.yaml or a .db3 file in it.
+/// metadata.yaml, a .db3 or a .mcap file in it.
 bool isRosbag2(const std::string &path);
 
 /// Reads the scans and odometry of a ROS 2 bag. Throws ReadError naming the file when it
-/// cannot be opened or is not a sqlite3 bag, has no scan topic, or does not carry a topic the
-/// options name (with the message type it needs).
+/// cannot be opened or is not a bag, an MCAP file is cut short, the bag has no scan topic, or
+/// does not carry a topic the options name (with the message type it needs).
 ScanLog readRosbag2(const std::string &path, const RosbagOptions &options = {});
 
-/// Writes the log as one sqlite3 file of a ROS 2 bag (`path`, conventionally *.db3), with the
-/// topics and frames writeRosbag gives a ROS 1 bag: /scan (sensor_msgs/msg/LaserScan, frame
-/// "laser"), /odom (nav_msgs/msg/Odometry, "odom" -> "base_link") and, with a mounting,
-/// /tf_static (tf2_msgs/msg/TFMessage, "base_link" -> "laser"). Throws ReadError naming the file
-/// when it cannot be written or a stamp is negative.
+/// Writes the log as one storage file of a ROS 2 bag: MCAP for a `path` ending in .mcap
+/// (Zstandard chunks, no summary section, schemas named by type without their definitions'
+/// text), sqlite3 otherwise (conventionally *.db3). The topics and frames are those writeRosbag
+/// gives a ROS 1 bag: /scan (sensor_msgs/msg/LaserScan, frame "laser"), /odom
+/// (nav_msgs/msg/Odometry, "odom" -> "base_link") and, with a mounting, /tf_static
+/// (tf2_msgs/msg/TFMessage, "base_link" -> "laser"). Throws ReadError naming the file when it
+/// cannot be written or a stamp is negative.
 void writeRosbag2(const std::string &path, const ScanLog &log);
 
 }  // namespace contour_reg::io
