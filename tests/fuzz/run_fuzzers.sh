@@ -11,7 +11,7 @@ seconds="${1:-60}"
 seed="${FUZZ_SEED:-1}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONTOUR_REG_BUILD_FUZZERS=ON \
   -DBUILD_TESTING=OFF -DCONTOUR_REG_BUILD_APPS=OFF -DCONTOUR_REG_WITH_ROSBAG=ON >/dev/null
-targets=(carmen pcd_folder rosbag2 pipeline map)
+targets=(carmen pcd_folder rosbag2 mcap pipeline map)
 # The bag reader's target exists where rosbag_storage is installed.
 if cmake --build build-fuzz --target help | grep -q rosbag_fuzzer; then targets+=(rosbag); fi
 cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]/%/_fuzzer}"
