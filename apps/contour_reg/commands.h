@@ -39,6 +39,7 @@ inline void runCommand(const std::function<int()> &body) {
 
 void addFeaturesCommand(CLI::App &app);
 void addSimulateCommand(CLI::App &app);
+void addConvertCommand(CLI::App &app);
 void addRegisterCommand(CLI::App &app);
 void addRelationsCommand(CLI::App &app);
 void addClosureCommand(CLI::App &app);

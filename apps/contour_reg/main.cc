@@ -56,6 +56,7 @@ int main(int argc, char **argv) {
       "2 invalid command line, unreadable input or unwritable output (the message names the option or the file).");
   contour_reg::cli::addFeaturesCommand(app);
   contour_reg::cli::addSimulateCommand(app);
+  contour_reg::cli::addConvertCommand(app);
   contour_reg::cli::addOdometryCommand(app);
   contour_reg::cli::addEvaluateCommand(app);
   contour_reg::cli::addCompareCommand(app);

@@ -5,9 +5,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
-#include "contour_reg/io/carmen.h"
-#include "contour_reg/io/rosbag.h"
-#include "contour_reg/io/rosbag2.h"
+#include "contour_reg/io/read_log.h"
 #include "contour_reg/io/trajectory.h"
 #include "scenario.h"
 
@@ -27,13 +25,7 @@ int runSimulate(const SimulateOptions &options) {
   const auto &waypoints = scenario.paths.at(options.path);
   const simulation::RunSettings settings = runSettings(options.scenario, options.rate, options.seed);
   const simulation::SimulatedRun run = simulation::simulateRun(scenario.world, waypoints, settings);
-  const std::filesystem::path extension = std::filesystem::path(options.output).extension();
-  if (extension == ".bag")
-    io::writeRosbag(options.output, run.log);
-  else if (extension == ".db3" || extension == ".mcap")
-    io::writeRosbag2(options.output, run.log);
-  else
-    io::writeCarmen(options.output, run.log);
+  io::writeLog(options.output, run.log);
   io::writeTum(options.ground_truth, run.ground_truth);
   std::fprintf(stderr, "simulated %zu scans along path %s (%.1f m) in %s with %s, %s\n", run.log.entries.size(),
                options.path.c_str(), run.path_length, scenario.map_name.c_str(), settings.lidar.name.c_str(),

@@ -2,8 +2,20 @@
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test_support.cmake)
 
 # Every subcommand has --help.
-foreach(command features simulate odometry evaluate compare register relations closure debug)
+foreach(command features simulate convert odometry evaluate compare register relations closure debug)
   expect_run(0 ${command} --help)
+endforeach()
+
+# convert writes the bundled log as a ROS 2 bag (MCAP, sqlite3): the odometry of each is the
+# log's, up to the single precision of a LaserScan's angles (the CARMEN log's are double).
+expect_run(0 odometry ${LOG} --output ${WORK_DIR}/carmen.tum)
+foreach(storage mcap db3)
+  expect_run(0 convert ${LOG} ${WORK_DIR}/converted.${storage})
+  expect_match("${LAST_ERR}" "written: .*converted.${storage}, 99 scans")
+  expect_run(0 odometry ${WORK_DIR}/converted.${storage} --output ${WORK_DIR}/converted-${storage}.tum)
+  expect_run(0 evaluate ${WORK_DIR}/converted-${storage}.tum --gt ${WORK_DIR}/carmen.tum)
+  expect_match("${LAST_OUT}" "end-point error: 0\\.000 m over 24\\.40 m")
+  expect_match("${LAST_OUT}" "ATE after SE\\(2\\) alignment: 0\\.000 m RMSE")
 endforeach()
 
 # odometry writes one TUM line per scan.

@@ -70,6 +70,16 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
   return log;
 }
 
+void writeLog(const std::string &path, const ScanLog &log) {
+  const std::filesystem::path extension = std::filesystem::path(path).extension();
+  if (extension == ".bag")
+    writeRosbag(path, log);
+  else if (extension == ".db3" || extension == ".mcap")
+    writeRosbag2(path, log);
+  else
+    writeCarmen(path, log);
+}
+
 void leaveOutWheelOdometry(ScanLog &log) {
   log.wheel_odometry.clear();
   for (LogEntry &entry : log.entries) entry.odometry.reset();

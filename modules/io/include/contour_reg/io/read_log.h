@@ -52,4 +52,9 @@ void leaveOutWheelOdometry(ScanLog &log);
 /// `log` must have an entry.
 std::size_t nearestEntry(const ScanLog &log, double stamp);
 
+/// Writes `log` in the format its name asks for: a ROS 1 bag (.bag), a ROS 2 bag's storage
+/// file (.db3: sqlite3, .mcap: MCAP) or a CARMEN log (any other name). Throws ReadError naming
+/// the file when it cannot be written.
+void writeLog(const std::string &path, const ScanLog &log);
+
 }  // namespace contour_reg::io
