@@ -70,7 +70,7 @@ class Cursor {
 
 class Reader {
  public:
-  explicit Reader(const McapVisitor &visitor) : visitor_(visitor) {}
+  explicit Reader(const StorageVisitor &visitor) : visitor_(visitor) {}
 
   // One record of the data section or of a chunk; throws std::runtime_error when a field
   // does not fit in it.
@@ -80,14 +80,14 @@ class Reader {
       const auto id = in.get<std::uint16_t>();
       schemas_[id] = in.string();
     } else if (opcode == kChannel) {
-      McapChannel channel;
+      StoredTopic channel;
       channel.id = in.get<std::uint16_t>();
       const auto schema = in.get<std::uint16_t>();
-      channel.topic = in.string();
+      channel.name = in.string();
       channel.message_encoding = in.string();
       const auto found = schemas_.find(schema);
-      if (found != schemas_.end()) channel.schema_name = found->second;
-      if (visitor_.channel) visitor_.channel(channel);
+      if (found != schemas_.end()) channel.type = found->second;
+      if (visitor_.topic) visitor_.topic(channel);
     } else if (opcode == kMessage) {
       const auto channel = in.get<std::uint16_t>();
       in.get<std::uint32_t>();  // sequence
@@ -131,7 +131,7 @@ class Reader {
     } catch (const std::exception &error) {
       why = error.what();
     }
-    if (visitor_.unreadable_chunk) visitor_.unreadable_chunk(byte, why);
+    if (visitor_.lost) visitor_.lost(byte, why);
   }
 
  private:
@@ -170,7 +170,7 @@ class Reader {
     }
   }
 
-  const McapVisitor &visitor_;
+  const StorageVisitor &visitor_;
   std::map<std::uint16_t, std::string> schemas_;  // id -> name
   std::vector<std::uint8_t> buffer_;              // a chunk decompressed
 };
@@ -232,7 +232,7 @@ class Writer {
 
 }  // namespace
 
-void visitMcap(const std::string &path, const McapVisitor &visitor) {
+void visitMcap(const std::string &path, const StorageVisitor &visitor) {
   std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) throw ReadError(path + ": cannot open");
   const auto size = static_cast<std::uint64_t>(file.tellg());
@@ -273,26 +273,26 @@ void visitMcap(const std::string &path, const McapVisitor &visitor) {
   throw ReadError(path + ": byte " + std::to_string(at) + ": the file ends before its data end record (cut short?)");
 }
 
-void writeMcap(const std::string &path, const std::vector<McapChannel> &channels,
-               const std::vector<McapMessage> &messages, const std::string &compression) {
+void writeMcap(const std::string &path, const std::vector<StoredTopic> &topics,
+               const std::vector<StoredMessage> &messages, const std::string &compression) {
   std::vector<std::uint8_t> out(std::begin(kMagic), std::end(kMagic));
   Writer::record(out, kHeader, [](std::vector<std::uint8_t> &c) {
     Writer::put(c, std::string("ros2"));
     Writer::put(c, std::string("contour_reg"));
   });
-  for (std::size_t k = 0; k < channels.size(); ++k) {
+  for (std::size_t k = 0; k < topics.size(); ++k) {
     const auto id = static_cast<std::uint16_t>(k + 1);
     Writer::record(out, kSchema, [&](std::vector<std::uint8_t> &c) {
       Writer::put<std::uint16_t>(c, id);
-      Writer::put(c, channels[k].schema_name);
+      Writer::put(c, topics[k].type);
       Writer::put(c, std::string("ros2msg"));
       Writer::put<std::uint32_t>(c, 0);  // the definition's text
     });
     Writer::record(out, kChannel, [&](std::vector<std::uint8_t> &c) {
       Writer::put<std::uint16_t>(c, id);
       Writer::put<std::uint16_t>(c, id);
-      Writer::put(c, channels[k].topic);
-      Writer::put(c, channels[k].message_encoding);
+      Writer::put(c, topics[k].name);
+      Writer::put(c, topics[k].message_encoding);
       Writer::put<std::uint32_t>(c, 0);  // metadata: none
     });
   }
@@ -300,11 +300,11 @@ void writeMcap(const std::string &path, const std::vector<McapChannel> &channels
   std::vector<std::uint8_t> records;
   std::uint64_t first = 0, last = 0;
   std::uint32_t sequence = 0;
-  for (const McapMessage &message : messages) {
+  for (const StoredMessage &message : messages) {
     if (records.empty()) first = message.log_time;
     last = std::max(last, message.log_time);
     Writer::record(records, kMessage, [&](std::vector<std::uint8_t> &c) {
-      Writer::put<std::uint16_t>(c, static_cast<std::uint16_t>(message.channel + 1));
+      Writer::put<std::uint16_t>(c, static_cast<std::uint16_t>(message.topic + 1));
       Writer::put<std::uint32_t>(c, sequence++);
       Writer::put<std::uint64_t>(c, message.log_time);
       Writer::put<std::uint64_t>(c, message.log_time);

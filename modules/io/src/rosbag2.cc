@@ -1,6 +1,5 @@
 #include "contour_reg/io/rosbag2.h"
 
-#include <sqlite3.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include "cdr.h"
 #include "log_assembly.h"
 #include "mcap.h"
+#include "sqlite_storage.h"
 
 namespace contour_reg::io {
 
@@ -54,45 +54,6 @@ std::vector<std::string> storageFiles(const std::string &path) {
   if (files.empty()) throw ReadError(path + ": a ROS 2 bag folder without a storage file");
   return files;
 }
-
-class Database {
- public:
-  Database(const std::string &path, int flags) : path_(path) {
-    if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) == SQLITE_OK) return;
-    const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
-    sqlite3_close(db_);
-    throw ReadError(path + ": cannot open: " + why);
-  }
-  ~Database() { sqlite3_close(db_); }
-  Database(const Database &) = delete;
-  Database &operator=(const Database &) = delete;
-
-  sqlite3 *get() const { return db_; }
-  [[noreturn]] void fail(const std::string &what) const {
-    throw ReadError(path_ + ": " + what + ": " + (db_ ? sqlite3_errmsg(db_) : "out of memory"));
-  }
-  void execute(const char *sql) const {
-    if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK) fail("cannot write the bag");
-  }
-
- private:
-  std::string path_;
-  sqlite3 *db_ = nullptr;
-};
-
-class Statement {
- public:
-  Statement(const Database &db, const char *sql, const std::string &what) {
-    if (sqlite3_prepare_v2(db.get(), sql, -1, &statement_, nullptr) != SQLITE_OK) db.fail(what);
-  }
-  ~Statement() { sqlite3_finalize(statement_); }
-  Statement(const Statement &) = delete;
-  Statement &operator=(const Statement &) = delete;
-  sqlite3_stmt *get() const { return statement_; }
-
- private:
-  sqlite3_stmt *statement_ = nullptr;
-};
 
 double stampOf(detail::CdrReader &in) {
   const auto seconds = in.read<std::int32_t>();
@@ -269,78 +230,23 @@ class BagContents {
   std::size_t index_ = 0;                // messages of the topics read, counted from 1
 };
 
-void readSqliteFile(const std::string &file, BagContents &contents) {
-  const Database db(file, SQLITE_OPEN_READONLY);
-  std::map<std::int64_t, std::pair<std::string, std::string>> topics;  // id -> (name, type)
-  {
-    Statement query(db, "SELECT id, name, type FROM topics ORDER BY id", "not a readable ROS 2 bag");
-    while (sqlite3_step(query.get()) == SQLITE_ROW) {
-      const auto *name = reinterpret_cast<const char *>(sqlite3_column_text(query.get(), 1));
-      const auto *type = reinterpret_cast<const char *>(sqlite3_column_text(query.get(), 2));
-      auto &topic = topics[sqlite3_column_int64(query.get(), 0)] = {name ? name : "", type ? type : ""};
-      contents.topic(topic.first, topic.second);
-    }
-  }
-  Statement messages(db, "SELECT topic_id, data FROM messages ORDER BY timestamp, id", "not a readable ROS 2 bag");
-  int step = SQLITE_ROW;
-  while ((step = sqlite3_step(messages.get())) == SQLITE_ROW) {
-    const auto topic = topics.find(sqlite3_column_int64(messages.get(), 0));
-    if (topic == topics.end()) continue;
-    const auto *bytes = static_cast<const std::uint8_t *>(sqlite3_column_blob(messages.get(), 1));
-    const auto size = static_cast<std::size_t>(sqlite3_column_bytes(messages.get(), 1));
-    contents.message(file, topic->second.first, topic->second.second, bytes, size);
-  }
-  if (step != SQLITE_DONE) db.fail("not a readable ROS 2 bag");
-}
-
-void readMcapFile(const std::string &file, BagContents &contents) {
-  std::map<std::uint16_t, detail::McapChannel> channels;
-  detail::McapVisitor visitor;
-  visitor.channel = [&](const detail::McapChannel &channel) {
-    channels[channel.id] = channel;
-    contents.topic(channel.topic, channel.schema_name);
+// The topics and messages of one storage file into `contents`.
+void readStorageFile(const std::string &file, BagContents &contents) {
+  std::map<std::uint16_t, detail::StoredTopic> topics;
+  detail::StorageVisitor visitor;
+  visitor.topic = [&](const detail::StoredTopic &topic) {
+    topics[topic.id] = topic;
+    contents.topic(topic.name, topic.type);
   };
   visitor.message = [&](std::uint16_t id, const std::uint8_t *data, std::size_t size) {
-    const auto channel = channels.find(id);
-    if (channel != channels.end())
-      contents.message(file, channel->second.topic, channel->second.schema_name, data, size);
+    const auto topic = topics.find(id);
+    if (topic != topics.end()) contents.message(file, topic->second.name, topic->second.type, data, size);
   };
-  visitor.unreadable_chunk = [&](std::uint64_t byte, const std::string &why) { contents.lost(file, byte, why); };
-  detail::visitMcap(file, visitor);
-}
-
-// The messages as rosbag2's sqlite3 storage (schema version 3, ROS 2 Humble) keeps them.
-void writeSqlite(const std::string &path, const std::vector<detail::McapChannel> &topics,
-                 const std::vector<detail::McapMessage> &messages) {
-  std::error_code error;
-  fs::remove(path, error);  // a bag is written anew
-  const Database db(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
-  db.execute(
-      "CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);"
-      "INSERT INTO schema VALUES(3, 'humble');"
-      "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,"
-      " serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
-      "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL,"
-      " data BLOB NOT NULL);"
-      "CREATE INDEX timestamp_idx ON messages (timestamp ASC);"
-      "BEGIN;");
-  Statement topic(db, "INSERT INTO topics VALUES(?, ?, ?, 'cdr', '')", "cannot write the bag");
-  for (std::size_t k = 0; k < topics.size(); ++k) {
-    sqlite3_reset(topic.get());
-    sqlite3_bind_int64(topic.get(), 1, static_cast<std::int64_t>(k + 1));
-    sqlite3_bind_text(topic.get(), 2, topics[k].topic.c_str(), -1, SQLITE_TRANSIENT);
-    sqlite3_bind_text(topic.get(), 3, topics[k].schema_name.c_str(), -1, SQLITE_TRANSIENT);
-    if (sqlite3_step(topic.get()) != SQLITE_DONE) db.fail("cannot write the bag");
-  }
-  Statement insert(db, "INSERT INTO messages(topic_id, timestamp, data) VALUES(?, ?, ?)", "cannot write the bag");
-  for (const detail::McapMessage &message : messages) {
-    sqlite3_reset(insert.get());
-    sqlite3_bind_int64(insert.get(), 1, static_cast<std::int64_t>(message.channel + 1));
-    sqlite3_bind_int64(insert.get(), 2, static_cast<std::int64_t>(message.log_time));
-    sqlite3_bind_blob(insert.get(), 3, message.data.data(), static_cast<int>(message.data.size()), SQLITE_TRANSIENT);
-    if (sqlite3_step(insert.get()) != SQLITE_DONE) db.fail("cannot write the bag");
-  }
-  db.execute("COMMIT;");
+  visitor.lost = [&](std::uint64_t byte, const std::string &why) { contents.lost(file, byte, why); };
+  if (fs::path(file).extension() == ".mcap")
+    detail::visitMcap(file, visitor);
+  else
+    detail::visitSqlite(file, visitor);
 }
 
 }  // namespace
@@ -360,18 +266,15 @@ ScanLog readRosbag2(const std::string &path, const RosbagOptions &options) {
   for (const std::string &file : storageFiles(path)) {
     std::error_code error;
     if (!fs::is_regular_file(file, error)) throw ReadError(file + ": no such storage file of the ROS 2 bag");
-    if (fs::path(file).extension() == ".mcap")
-      readMcapFile(file, contents);
-    else
-      readSqliteFile(file, contents);
+    readStorageFile(file, contents);
   }
   return contents.finish();
 }
 
 void writeRosbag2(const std::string &path, const ScanLog &log) {
-  const std::vector<detail::McapChannel> topics = {
+  const std::vector<detail::StoredTopic> topics = {
       {1, "/scan", "cdr", kScanType}, {2, "/odom", "cdr", kOdometryType}, {3, "/tf_static", "cdr", kTransformsType}};
-  std::vector<detail::McapMessage> messages;
+  std::vector<detail::StoredMessage> messages;
   const auto put = [&](std::size_t topic, double stamp, std::vector<std::uint8_t> data, const std::string &what) {
     if (!(stamp >= 0.0) || !(stamp < 2147483648.0))
       throw ReadError(path + ": " + what + " has stamp " + std::to_string(stamp) + " s, which a bag cannot hold");
@@ -393,7 +296,7 @@ void writeRosbag2(const std::string &path, const ScanLog &log) {
   if (fs::path(path).extension() == ".mcap")
     detail::writeMcap(path, topics, messages, "zstd");
   else
-    writeSqlite(path, topics, messages);
+    detail::writeSqlite(path, topics, messages);
 }
 
 }  // namespace contour_reg::io
