@@ -72,9 +72,18 @@ class CdrReader {
     const std::uint32_t count = read<std::uint32_t>();
     if (count == 0) return {};
     align(sizeof(T));
-    if (count > (size_ - at_) / sizeof(T)) throw std::runtime_error("a sequence longer than the message");
+    const std::size_t bytes = std::size_t{count} * sizeof(T);
+    if (at_ > size_ || bytes > size_ - at_) throw std::runtime_error("a sequence longer than the message");
     std::vector<T> values(count);
-    for (T &value : values) value = read<T>();
+    std::memcpy(values.data(), data_ + at_, bytes);
+    at_ += bytes;
+    if (little_endian_ != hostIsLittleEndian())
+      for (T &value : values) {
+        unsigned char raw[sizeof(T)];
+        std::memcpy(raw, &value, sizeof(T));
+        turnAround(raw);
+        std::memcpy(&value, raw, sizeof(T));
+      }
     return values;
   }
 

@@ -57,7 +57,6 @@ class Cursor {
     at_ += static_cast<std::size_t>(length);
     return start;
   }
-  std::size_t at() const { return at_; }
   std::size_t left() const { return size_ - at_; }
 
  private:

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "bag_messages.h"
@@ -63,7 +64,8 @@ geometry_msgs::Quaternion quaternionOf(double yaw) {
 
 double yawOf(const geometry_msgs::Quaternion &q) { return detail::yawOfQuaternion(q.x, q.y, q.z, q.w); }
 
-detail::ScanMessage scanMessage(const sensor_msgs::LaserScan &message) {
+// The message's fields, its ranges moved.
+detail::ScanMessage scanMessage(sensor_msgs::LaserScan &message) {
   detail::ScanMessage scan;
   scan.stamp = message.header.stamp.toSec();
   scan.frame_id = message.header.frame_id;
@@ -74,7 +76,7 @@ detail::ScanMessage scanMessage(const sensor_msgs::LaserScan &message) {
   scan.scan_time = message.scan_time;
   scan.range_min = message.range_min;
   scan.range_max = message.range_max;
-  scan.ranges = message.ranges;
+  scan.ranges = std::move(message.ranges);
   return scan;
 }
 
@@ -174,12 +176,14 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
       try {
         if (message.getTopic() == scan_topic) {
           auto scan = decoded<sensor_msgs::LaserScan>(message, laserScanFits);
-          const bool first = log.entries.empty();
-          if (!scan)
+          if (!scan) {
             log.report.add(where, index, "not a sensor_msgs/LaserScan");
-          else if (detail::addScan(scanMessage(*scan), options.max_range, options.max_beams, where, index, log) &&
-                   first)
-            scan_frame = detail::frameName(scan->header.frame_id);
+          } else {
+            const bool first = log.entries.empty();
+            const detail::ScanMessage read = scanMessage(*scan);
+            if (detail::addScan(read, options.max_range, options.max_beams, where, index, log) && first)
+              scan_frame = detail::frameName(read.frame_id);
+          }
         } else if (message.getTopic() != odometry_topic) {
           if (auto transforms = decoded<tf2_msgs::TFMessage>(message, transformsFit))
             for (const geometry_msgs::TransformStamped &t : transforms->transforms)
@@ -236,7 +240,7 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
       // A bag's record time must be after its epoch; the header keeps the scan's own stamp.
       const ros::Time stamp(scan.stamp);
       const ros::Time recorded = std::max(stamp, ros::TIME_MIN);
-      const detail::ScanMessage written = detail::scanMessageOf(scan);
+      detail::ScanMessage written = detail::scanMessageOf(scan);
       sensor_msgs::LaserScan message;
       message.header.seq = sequence++;
       message.header.stamp = stamp;
@@ -248,7 +252,7 @@ void writeRosbag(const std::string &path, const ScanLog &log) {
       message.scan_time = written.scan_time;
       message.range_min = written.range_min;
       message.range_max = written.range_max;
-      message.ranges = written.ranges;
+      message.ranges = std::move(written.ranges);
       if (sequence == 1 && log.laser_pose) {
         // The mounting, as a robot's static transform publisher gives it, with the first scan.
         geometry_msgs::TransformStamped mounting;

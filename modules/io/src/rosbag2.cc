@@ -158,7 +158,7 @@ class BagContents {
     ++log_.report.lines;
     const std::string where = file + " (" + name + ")";
     try {
-      detail::CdrReader in(bytes, bytes ? size : 0);
+      detail::CdrReader in(bytes, size);
       if (is_scan) {
         const detail::ScanMessage scan = decodeScan(in);
         const bool first = log_.entries.empty();
