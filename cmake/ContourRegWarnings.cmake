@@ -19,3 +19,12 @@ if(CONTOUR_REG_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   add_link_options(-fsanitize=address,undefined)
 endif()
+
+# In the sanitizer build the tests and the command-line tool compile without optimization: the
+# computation they check runs in the libraries, optimized as the build type says, and most of
+# their compile time is spent optimizing CLI11's, GoogleTest's and PCL's inline code.
+function(contour_reg_set_driver_options target)
+  if(CONTOUR_REG_SANITIZE AND NOT CONTOUR_REG_BUILD_FUZZERS)
+    target_compile_options(${target} PRIVATE -O0)
+  endif()
+endfunction()
