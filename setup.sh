@@ -6,7 +6,8 @@
 #                          the bundled log and the paper's experiment on the built-in office map
 #   ./setup.sh test        build, then run every test with ctest
 #   ./setup.sh sanitize    build with AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/, run the tests
-#   ./setup.sh fuzz [S]    build the libFuzzer targets with clang into build-fuzz/, run each for S seconds (60)
+#   ./setup.sh fuzz [S]    build the libFuzzer targets with clang into build-fuzz/, run each for S seconds (60),
+#                          one per core at a time
 set -euo pipefail
 cd "$(dirname "$0")"
 
