@@ -5,7 +5,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -341,6 +347,152 @@ TEST(Rosbag2, AWrittenMcapBagReadsBackAsTheSqliteOne) {
                                                         "  storage_identifier: mcap\n"
                                                         "  relative_file_paths: [run_0.mcap]\n";
   EXPECT_EQ(readLog(folder.string()).entries.size(), written.entries.size());
+}
+
+// The schemas of an MCAP file written by writeRosbag2: type name -> definition text, from its
+// top-level schema records (encoding ros2msg).
+std::map<std::string, std::string> writtenSchemas(const std::string &path) {
+  std::ifstream file(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  auto number = [&](std::size_t at, std::size_t size) {
+    std::uint64_t value = 0;
+    for (std::size_t k = 0; k < size; ++k)
+      value |= std::uint64_t(static_cast<unsigned char>(bytes.at(at + k))) << (8 * k);
+    return value;
+  };
+  auto text = [&](std::size_t &at) {
+    const std::size_t size = number(at, 4);
+    std::string value = bytes.substr(at + 4, size);
+    at += 4 + size;
+    return value;
+  };
+  std::map<std::string, std::string> schemas;
+  for (std::size_t at = 8; at + 9 <= bytes.size();) {
+    const int opcode = static_cast<unsigned char>(bytes[at]);
+    const std::size_t length = number(at + 1, 8), content = at + 9;
+    if (opcode == 0x03) {
+      std::size_t field = content + 2;
+      const std::string name = text(field);
+      EXPECT_EQ(text(field), "ros2msg") << name;
+      schemas[name] = text(field);
+    }
+    at = content + length;
+  }
+  return schemas;
+}
+
+// What a viewer does with a schema: walks a CDR message by the fields of a ros2msg definition
+// (its message, then "MSG: package/Name" sections after lines of '='), collecting each scalar,
+// string and sequence length by its path ("pose.pose.position.x", "ranges.size").
+class DefinitionWalk {
+ public:
+  DefinitionWalk(const std::string &definition, const std::vector<std::uint8_t> &cdr) : cdr_(cdr) {
+    std::istringstream lines(definition);
+    std::string line, section;
+    while (std::getline(lines, line)) {
+      if (line.find_first_not_of('=') == std::string::npos && line.size() >= 3) continue;
+      if (line.rfind("MSG: ", 0) == 0) {
+        section = normalized(line.substr(5));
+        continue;
+      }
+      std::istringstream words(line.substr(0, line.find('#')));
+      std::string type, name;
+      if (words >> type >> name) types_[section].push_back({type, name});
+    }
+    offset_ = 0;
+    walk("", "");
+    EXPECT_EQ(4 + offset_, cdr_.size()) << "the definition does not end where the message does";
+  }
+  std::map<std::string, double> numbers;
+  std::map<std::string, std::string> strings;
+
+ private:
+  static std::string normalized(std::string type) {
+    const auto msg = type.find("/msg/");
+    return msg == std::string::npos ? type : type.erase(msg, 4);
+  }
+  void align(std::size_t size) { offset_ = (offset_ + size - 1) / size * size; }
+  std::uint64_t raw(std::size_t size) {
+    align(size);
+    if (4 + offset_ + size > cdr_.size()) throw std::out_of_range("past the message's end");
+    std::uint64_t value = 0;
+    for (std::size_t k = 0; k < size; ++k) value |= std::uint64_t(cdr_[4 + offset_ + k]) << (8 * k);
+    offset_ += size;
+    return value;
+  }
+  void one(const std::string &type, const std::string &path) {
+    if (type == "string") {
+      const std::size_t size = raw(4);
+      if (4 + offset_ + size > cdr_.size()) throw std::out_of_range("past the message's end");
+      strings[path] = std::string(cdr_.begin() + 4 + offset_, cdr_.begin() + 4 + offset_ + size - 1);
+      offset_ += size;
+    } else if (type == "float64") {
+      const std::uint64_t bits = raw(8);
+      double value;
+      std::memcpy(&value, &bits, 8);
+      numbers[path] = value;
+    } else if (type == "float32") {
+      const auto bits = static_cast<std::uint32_t>(raw(4));
+      float value;
+      std::memcpy(&value, &bits, 4);
+      numbers[path] = value;
+    } else if (type == "int32" || type == "uint32") {
+      const auto bits = static_cast<std::uint32_t>(raw(4));
+      numbers[path] = type == "int32" ? double(static_cast<std::int32_t>(bits)) : double(bits);
+    } else {
+      ASSERT_TRUE(types_.count(normalized(type))) << "no definition of " << type;
+      walk(normalized(type), path + ".");
+    }
+  }
+  void walk(const std::string &section, const std::string &prefix) {
+    for (const auto &[type, name] : types_.at(section)) {
+      const auto bracket = type.find('[');
+      if (bracket == std::string::npos) {
+        one(type, prefix + name);
+        continue;
+      }
+      const std::string element = type.substr(0, bracket), bound = type.substr(bracket + 1, type.size() - bracket - 2);
+      const std::size_t count = bound.empty() ? raw(4) : std::stoul(bound);
+      numbers[prefix + name + ".size"] = double(count);
+      for (std::size_t k = 0; k < count; ++k) one(element, prefix + name + "." + std::to_string(k));
+    }
+  }
+  const std::vector<std::uint8_t> &cdr_;
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> types_;
+  std::size_t offset_ = 0;
+};
+
+// A viewer such as Foxglove decodes a topic by its schema's definition: each type written
+// carries one, and it walks the messages laid out by hand above field by field to their end.
+TEST(Rosbag2, AWrittenMcapBagDefinesItsMessages) {
+  test::TempDir dir;
+  ScanLog written = timedLog();
+  written.laser_pose = Pose2D{0.3, -0.1, 0.25};
+  writeRosbag2(dir.file("timed.mcap"), written);
+  const std::map<std::string, std::string> schemas = writtenSchemas(dir.file("timed.mcap"));
+  ASSERT_EQ(schemas.size(), 3u);
+  for (const auto &[type, definition] : schemas) EXPECT_FALSE(definition.empty()) << type;
+
+  const DefinitionWalk scan(schemas.at("sensor_msgs/msg/LaserScan"), handMadeScan());
+  EXPECT_EQ(scan.strings.at("header.frame_id"), "laser");
+  EXPECT_EQ(scan.numbers.at("header.stamp.nanosec"), 250000000.0);
+  EXPECT_FLOAT_EQ(float(scan.numbers.at("range_max")), 20.0f);
+  EXPECT_EQ(scan.numbers.at("ranges.size"), 3.0);
+  EXPECT_FLOAT_EQ(float(scan.numbers.at("ranges.1")), 25.0f);
+  EXPECT_EQ(scan.numbers.at("intensities.size"), 0.0);
+
+  const DefinitionWalk odometry(schemas.at("nav_msgs/msg/Odometry"), handMadeOdometry(12.0, 1.5));
+  EXPECT_EQ(odometry.strings.at("child_frame_id"), "base_link");
+  EXPECT_EQ(odometry.numbers.at("pose.pose.position.x"), 1.5);
+  EXPECT_EQ(odometry.numbers.at("pose.pose.orientation.w"), std::sqrt(0.5));
+  EXPECT_EQ(odometry.numbers.at("twist.covariance.size"), 36.0);
+
+  const DefinitionWalk transforms(schemas.at("tf2_msgs/msg/TFMessage"), handMadeMounting());
+  EXPECT_EQ(transforms.numbers.at("transforms.size"), 1.0);
+  EXPECT_EQ(transforms.strings.at("transforms.0.header.frame_id"), "base_link");
+  EXPECT_EQ(transforms.strings.at("transforms.0.child_frame_id"), "laser");
+  EXPECT_EQ(transforms.numbers.at("transforms.0.transform.translation.x"), 0.2);
+  EXPECT_EQ(transforms.numbers.at("transforms.0.transform.rotation.z"), 1.0);
 }
 
 TEST(Rosbag2, AnotherStorageIsAnErrorNamingIt) {

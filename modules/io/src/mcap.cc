@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "contour_reg/io/scan_log.h"
+#include "message_definitions.h"
 
 namespace contour_reg::io::detail {
 
@@ -285,7 +286,7 @@ void writeMcap(const std::string &path, const std::vector<StoredTopic> &topics,
       Writer::put<std::uint16_t>(c, id);
       Writer::put(c, topics[k].type);
       Writer::put(c, std::string("ros2msg"));
-      Writer::put<std::uint32_t>(c, 0);  // the definition's text
+      Writer::put(c, messageDefinition(topics[k].type));
     });
     Writer::record(out, kChannel, [&](std::vector<std::uint8_t> &c) {
       Writer::put<std::uint16_t>(c, id);

@@ -16,7 +16,8 @@ namespace contour_reg::io::detail {
 void visitMcap(const std::string &path, const StorageVisitor &visitor);
 
 /// Writes an MCAP file of the ros2 profile: each channel with a schema named by its type
-/// (encoding ros2msg, its definition text left empty: readers of ROS 2 bags go by the name),
+/// (encoding ros2msg, with the definition text of message_definitions.h, by which a viewer
+/// decodes the messages; ROS 2 bag readers go by the name),
 /// the messages in chunks of up to 1 MB compressed with `compression` ("", "lz4" or "zstd"),
 /// then the data end and footer records. Throws ReadError naming the file when it cannot be written.
 void writeMcap(const std::string &path, const std::vector<StoredTopic> &topics,
