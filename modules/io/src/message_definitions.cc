@@ -7,8 +7,7 @@ namespace {
 
 constexpr char kTime[] = "int32 sec\nuint32 nanosec\n";
 constexpr char kHeader[] = "builtin_interfaces/Time stamp\nstring frame_id\n";
-constexpr char kVector3[] = "float64 x\nfloat64 y\nfloat64 z\n";
-constexpr char kPoint[] = "float64 x\nfloat64 y\nfloat64 z\n";
+constexpr char kXyz[] = "float64 x\nfloat64 y\nfloat64 z\n";  // geometry_msgs/Point and Vector3
 constexpr char kQuaternion[] = "float64 x 0\nfloat64 y 0\nfloat64 z 0\nfloat64 w 1\n";
 
 struct Used {
@@ -40,11 +39,11 @@ std::string messageDefinition(const std::string &type) {
          {"builtin_interfaces/Time", kTime},
          {"geometry_msgs/PoseWithCovariance", "geometry_msgs/Pose pose\nfloat64[36] covariance\n"},
          {"geometry_msgs/Pose", "geometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"},
-         {"geometry_msgs/Point", kPoint},
+         {"geometry_msgs/Point", kXyz},
          {"geometry_msgs/Quaternion", kQuaternion},
          {"geometry_msgs/TwistWithCovariance", "geometry_msgs/Twist twist\nfloat64[36] covariance\n"},
          {"geometry_msgs/Twist", "geometry_msgs/Vector3 linear\ngeometry_msgs/Vector3 angular\n"},
-         {"geometry_msgs/Vector3", kVector3}});
+         {"geometry_msgs/Vector3", kXyz}});
   if (type == "tf2_msgs/msg/TFMessage")
     return withUsed(
         "geometry_msgs/TransformStamped[] transforms\n",
@@ -53,7 +52,7 @@ std::string messageDefinition(const std::string &type) {
          {"std_msgs/Header", kHeader},
          {"builtin_interfaces/Time", kTime},
          {"geometry_msgs/Transform", "geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n"},
-         {"geometry_msgs/Vector3", kVector3},
+         {"geometry_msgs/Vector3", kXyz},
          {"geometry_msgs/Quaternion", kQuaternion}});
   return "";
 }

@@ -32,11 +32,11 @@ ScanLog readRosbag2(const std::string &path, const RosbagOptions &options = {});
 
 /// Writes the log as one storage file of a ROS 2 bag: MCAP for a `path` ending in .mcap
 /// (Zstandard chunks, no summary section, each schema with its message definition, by which
-/// viewers such as Foxglove decode the topics), sqlite3 otherwise (conventionally *.db3). The topics and frames are those writeRosbag
-/// gives a ROS 1 bag: /scan (sensor_msgs/msg/LaserScan, frame "laser"), /odom
-/// (nav_msgs/msg/Odometry, "odom" -> "base_link") and, with a mounting, /tf_static
-/// (tf2_msgs/msg/TFMessage, "base_link" -> "laser"). Throws ReadError naming the file when it
-/// cannot be written or a stamp is negative.
+/// viewers such as Foxglove decode the topics), sqlite3 otherwise (conventionally *.db3). The
+/// topics and frames are those writeRosbag gives a ROS 1 bag: /scan (sensor_msgs/msg/LaserScan,
+/// frame "laser"), /odom (nav_msgs/msg/Odometry, "odom" -> "base_link") and, with a mounting,
+/// /tf_static (tf2_msgs/msg/TFMessage, "base_link" -> "laser"). Throws ReadError naming the file
+/// when it cannot be written or a stamp is negative.
 void writeRosbag2(const std::string &path, const ScanLog &log);
 
 }  // namespace contour_reg::io
