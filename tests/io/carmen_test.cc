@@ -177,8 +177,7 @@ TEST(Carmen, AGzipLogCutShortIsNamed) {
   gzFile file = gzopen(dir.file("a.clf.gz").c_str(), "wb");
   gzwrite(file, text.data(), static_cast<unsigned>(text.size()));
   gzclose(file);
-  std::ifstream in(dir.file("a.clf.gz"), std::ios::binary);
-  const std::string zipped{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string zipped = test::readBytes(dir.file("a.clf.gz"));
   const std::string path = dir.write("cut.clf.gz", zipped.substr(0, zipped.size() / 2));
   const ScanLog read = readCarmen(path);
   EXPECT_GT(read.entries.size(), 0u);

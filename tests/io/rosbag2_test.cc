@@ -5,8 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -349,16 +347,20 @@ TEST(Rosbag2, AWrittenMcapBagReadsBackAsTheSqliteOne) {
   EXPECT_EQ(readLog(folder.string()).entries.size(), written.entries.size());
 }
 
+// The little-endian number of `size` bytes at `bytes`.
+std::uint64_t littleEndian(const unsigned char *bytes, std::size_t size) {
+  std::uint64_t value = 0;
+  for (std::size_t k = 0; k < size; ++k) value |= std::uint64_t(bytes[k]) << (8 * k);
+  return value;
+}
+
 // The schemas of an MCAP file written by writeRosbag2: type name -> definition text, from its
 // top-level schema records (encoding ros2msg).
 std::map<std::string, std::string> writtenSchemas(const std::string &path) {
-  std::ifstream file(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string bytes = test::readBytes(path);
   auto number = [&](std::size_t at, std::size_t size) {
-    std::uint64_t value = 0;
-    for (std::size_t k = 0; k < size; ++k)
-      value |= std::uint64_t(static_cast<unsigned char>(bytes.at(at + k))) << (8 * k);
-    return value;
+    if (at + size > bytes.size()) throw std::out_of_range("past the file's end");
+    return littleEndian(reinterpret_cast<const unsigned char *>(bytes.data()) + at, size);
   };
   auto text = [&](std::size_t &at) {
     const std::size_t size = number(at, 4);
@@ -399,7 +401,6 @@ class DefinitionWalk {
       std::string type, name;
       if (words >> type >> name) types_[section].push_back({type, name});
     }
-    offset_ = 0;
     walk("", "");
     EXPECT_EQ(4 + offset_, cdr_.size()) << "the definition does not end where the message does";
   }
@@ -415,8 +416,7 @@ class DefinitionWalk {
   std::uint64_t raw(std::size_t size) {
     align(size);
     if (4 + offset_ + size > cdr_.size()) throw std::out_of_range("past the message's end");
-    std::uint64_t value = 0;
-    for (std::size_t k = 0; k < size; ++k) value |= std::uint64_t(cdr_[4 + offset_ + k]) << (8 * k);
+    const std::uint64_t value = littleEndian(cdr_.data() + 4 + offset_, size);
     offset_ += size;
     return value;
   }

@@ -48,11 +48,7 @@ TEST(Rosbag, AWrittenBagReadsBackWithBeamTimingAndOdometry) {
 bool writeCorruptBag(const std::string &path, const std::string &pattern, std::size_t offset,
                      const std::string &replacement, bool last = false) {
   writeRosbag(path, timedLog());
-  std::string bytes;
-  {
-    std::ifstream in(path, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  std::string bytes = test::readBytes(path);
   const std::size_t at = last ? bytes.rfind(pattern) : bytes.find(pattern);
   if (at == std::string::npos) return false;
   bytes.replace(at + offset, replacement.size(), replacement);

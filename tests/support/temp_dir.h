@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -36,6 +37,12 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// The bytes of the file at `path` ("" when it cannot be read).
+inline std::string readBytes(const std::string &path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 /// The folder of the shared datasets, or "" (and the test is skipped by the caller).
 inline std::string sharedDataset(const std::string &relative) {

@@ -5,14 +5,15 @@
 namespace contour_reg::io::detail {
 namespace {
 
-constexpr char kTime[] = "int32 sec\nuint32 nanosec\n";
-constexpr char kHeader[] = "builtin_interfaces/Time stamp\nstring frame_id\n";
-constexpr char kXyz[] = "float64 x\nfloat64 y\nfloat64 z\n";  // geometry_msgs/Point and Vector3
-constexpr char kQuaternion[] = "float64 x 0\nfloat64 y 0\nfloat64 z 0\nfloat64 w 1\n";
-
 struct Used {
   const char *name, *text;
 };
+
+// The messages several definitions use.
+constexpr Used kHeader{"std_msgs/Header", "builtin_interfaces/Time stamp\nstring frame_id\n"};
+constexpr Used kTime{"builtin_interfaces/Time", "int32 sec\nuint32 nanosec\n"};
+constexpr Used kVector3{"geometry_msgs/Vector3", "float64 x\nfloat64 y\nfloat64 z\n"};
+constexpr Used kQuaternion{"geometry_msgs/Quaternion", "float64 x 0\nfloat64 y 0\nfloat64 z 0\nfloat64 w 1\n"};
 
 std::string withUsed(const std::string &text, std::initializer_list<Used> used) {
   std::string definition = text;
@@ -30,30 +31,30 @@ std::string messageDefinition(const std::string &type) {
         "float32 time_increment\nfloat32 scan_time\n"
         "float32 range_min\nfloat32 range_max\n"
         "float32[] ranges\nfloat32[] intensities\n",
-        {{"std_msgs/Header", kHeader}, {"builtin_interfaces/Time", kTime}});
+        {kHeader, kTime});
   if (type == "nav_msgs/msg/Odometry")
     return withUsed(
         "std_msgs/Header header\nstring child_frame_id\n"
         "geometry_msgs/PoseWithCovariance pose\ngeometry_msgs/TwistWithCovariance twist\n",
-        {{"std_msgs/Header", kHeader},
-         {"builtin_interfaces/Time", kTime},
+        {kHeader,
+         kTime,
          {"geometry_msgs/PoseWithCovariance", "geometry_msgs/Pose pose\nfloat64[36] covariance\n"},
          {"geometry_msgs/Pose", "geometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"},
-         {"geometry_msgs/Point", kXyz},
-         {"geometry_msgs/Quaternion", kQuaternion},
+         {"geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n"},
+         kQuaternion,
          {"geometry_msgs/TwistWithCovariance", "geometry_msgs/Twist twist\nfloat64[36] covariance\n"},
          {"geometry_msgs/Twist", "geometry_msgs/Vector3 linear\ngeometry_msgs/Vector3 angular\n"},
-         {"geometry_msgs/Vector3", kXyz}});
+         kVector3});
   if (type == "tf2_msgs/msg/TFMessage")
     return withUsed(
         "geometry_msgs/TransformStamped[] transforms\n",
         {{"geometry_msgs/TransformStamped",
           "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n"},
-         {"std_msgs/Header", kHeader},
-         {"builtin_interfaces/Time", kTime},
+         kHeader,
+         kTime,
          {"geometry_msgs/Transform", "geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n"},
-         {"geometry_msgs/Vector3", kXyz},
-         {"geometry_msgs/Quaternion", kQuaternion}});
+         kVector3,
+         kQuaternion});
   return "";
 }
 
