@@ -1,6 +1,7 @@
 #include <lz4frame.h>
 #include <sqlite3.h>
 #include <zlib.h>
+#include <zstd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -354,29 +355,42 @@ std::uint64_t littleEndian(const unsigned char *bytes, std::size_t size) {
   return value;
 }
 
+// Little-endian fields of a file's bytes, each checked against the bytes' end.
+class Fields {
+ public:
+  explicit Fields(std::string bytes) : bytes_(std::move(bytes)) {}
+  std::uint64_t number(std::size_t at, std::size_t size) const {
+    if (at + size > bytes_.size() || at + size < at) throw std::out_of_range("past the bytes' end");
+    return littleEndian(reinterpret_cast<const unsigned char *>(bytes_.data()) + at, size);
+  }
+  // The string (uint32 length, then its bytes) at `at`; `at` moves past it.
+  std::string text(std::size_t &at) const {
+    const std::size_t size = number(at, 4);
+    if (at + 4 + size > bytes_.size()) throw std::out_of_range("past the bytes' end");
+    std::string value = bytes_.substr(at + 4, size);
+    at += 4 + size;
+    return value;
+  }
+  const std::string &bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
 // The schemas of an MCAP file written by writeRosbag2: type name -> definition text, from its
 // top-level schema records (encoding ros2msg).
 std::map<std::string, std::string> writtenSchemas(const std::string &path) {
-  const std::string bytes = test::readBytes(path);
-  auto number = [&](std::size_t at, std::size_t size) {
-    if (at + size > bytes.size()) throw std::out_of_range("past the file's end");
-    return littleEndian(reinterpret_cast<const unsigned char *>(bytes.data()) + at, size);
-  };
-  auto text = [&](std::size_t &at) {
-    const std::size_t size = number(at, 4);
-    std::string value = bytes.substr(at + 4, size);
-    at += 4 + size;
-    return value;
-  };
+  const Fields file(test::readBytes(path));
   std::map<std::string, std::string> schemas;
-  for (std::size_t at = 8; at + 9 <= bytes.size();) {
-    const int opcode = static_cast<unsigned char>(bytes[at]);
-    const std::size_t length = number(at + 1, 8), content = at + 9;
+  for (std::size_t at = 8; at + 9 <= file.bytes().size();) {
+    const auto opcode = file.number(at, 1);
+    const std::size_t length = file.number(at + 1, 8), content = at + 9;
+    if (opcode == 0x0F) break;  // the data end: the summary after it repeats the schemas
     if (opcode == 0x03) {
       std::size_t field = content + 2;
-      const std::string name = text(field);
-      EXPECT_EQ(text(field), "ros2msg") << name;
-      schemas[name] = text(field);
+      const std::string name = file.text(field);
+      EXPECT_EQ(file.text(field), "ros2msg") << name;
+      schemas[name] = file.text(field);
     }
     at = content + length;
   }
@@ -493,6 +507,134 @@ TEST(Rosbag2, AWrittenMcapBagDefinesItsMessages) {
   EXPECT_EQ(transforms.strings.at("transforms.0.child_frame_id"), "laser");
   EXPECT_EQ(transforms.numbers.at("transforms.0.transform.translation.x"), 0.2);
   EXPECT_EQ(transforms.numbers.at("transforms.0.transform.rotation.z"), 1.0);
+}
+
+// A log long enough for more than one chunk: `scans` scans of 200 beams at 10 Hz, each with odometry.
+ScanLog longLog(int scans) {
+  ScanLog log;
+  for (int k = 0; k < scans; ++k) {
+    LogEntry entry;
+    entry.scan.stamp = 0.1 * k;
+    entry.scan.angle_min = -1.5;
+    entry.scan.angle_increment = 0.015;
+    entry.scan.range_max = 30.0;
+    entry.scan.ranges.assign(200, 2.0f + 0.001f * static_cast<float>(k));
+    entry.odometry = Pose2D{0.01 * k, 0.0, 0.0};
+    log.entries.push_back(entry);
+  }
+  log.laser_pose = Pose2D{0.2, 0.0, 0.0};
+  return log;
+}
+
+// A reader that seeks, as Foxglove's indexed reader and `mcap info` do, starts at the footer:
+// the summary section it points to gives the statistics and, for each chunk, where it lies and
+// where the index of each channel's messages in it lies (mcap.dev/spec). Every pointer of the
+// written summary is followed to the record it names.
+TEST(Rosbag2, AWrittenMcapBagHasASummaryThatIndexesEveryMessage) {
+  test::TempDir dir;
+  const ScanLog written = longLog(3000);
+  writeRosbag2(dir.file("long.mcap"), written);
+  const Fields file(test::readBytes(dir.file("long.mcap")));
+  const std::string &bytes = file.bytes();
+  const std::size_t footer = bytes.size() - 8 - 29;
+  ASSERT_EQ(file.number(footer, 1), 0x02u);
+  const std::size_t summary = file.number(footer + 9, 8), offsets = file.number(footer + 17, 8);
+  ASSERT_GT(summary, 0u) << "no summary section";
+  ASSERT_LT(summary, offsets);
+  ASSERT_LT(offsets, footer);
+  EXPECT_EQ(file.number(footer + 25, 4), crcOf(bytes.substr(summary, footer + 25 - summary)));
+
+  // The summary's records by opcode, each group's span, and the summary offsets that name them.
+  std::map<int, std::vector<std::size_t>> records;  // opcode -> each record's content start
+  std::map<int, std::pair<std::size_t, std::size_t>> groups;
+  for (std::size_t at = summary; at < offsets;) {
+    const int opcode = static_cast<int>(file.number(at, 1));
+    const std::size_t end = at + 9 + file.number(at + 1, 8);
+    records[opcode].push_back(at + 9);
+    if (!groups.count(opcode)) groups[opcode].first = at;
+    EXPECT_EQ(groups[opcode].first + groups[opcode].second, at) << "opcode " << opcode << " is not one group";
+    groups[opcode].second = end - groups[opcode].first;
+    at = end;
+  }
+  std::map<int, std::pair<std::size_t, std::size_t>> named;
+  for (std::size_t at = offsets; at < footer; at += 9 + file.number(at + 1, 8)) {
+    ASSERT_EQ(file.number(at, 1), 0x0Eu);
+    named[static_cast<int>(file.number(at + 9, 1))] = {file.number(at + 10, 8), file.number(at + 18, 8)};
+  }
+  EXPECT_EQ(named, groups);
+  ASSERT_EQ(records[0x03].size(), 3u);  // schemas
+  ASSERT_EQ(records[0x04].size(), 3u);  // channels
+  ASSERT_EQ(records[0x0B].size(), 1u);  // statistics
+  ASSERT_GE(records[0x08].size(), 2u);  // chunk indexes
+
+  // Each chunk index leads to its chunk, and through its message indexes to every message in it.
+  std::map<std::uint64_t, std::uint64_t> indexed;  // channel -> messages
+  std::uint64_t first_time = ~0ull, last_time = 0;
+  for (const std::size_t index : records[0x08]) {
+    const std::uint64_t start_time = file.number(index, 8), end_time = file.number(index + 8, 8);
+    const std::size_t chunk = file.number(index + 16, 8), chunk_length = file.number(index + 24, 8);
+    ASSERT_EQ(file.number(chunk, 1), 0x06u);
+    EXPECT_EQ(chunk_length, 9 + file.number(chunk + 1, 8));
+    std::size_t field = chunk + 9 + 16;
+    const std::size_t uncompressed = file.number(field, 8);
+    field += 12;
+    EXPECT_EQ(file.text(field), "zstd");
+    const std::size_t stored = file.number(field, 8);
+    std::string records_of_chunk(uncompressed, '\0');
+    ASSERT_EQ(ZSTD_decompress(records_of_chunk.data(), uncompressed, bytes.data() + field + 8, stored), uncompressed);
+    const Fields chunk_records(records_of_chunk);
+
+    std::size_t at = index + 32;
+    const std::size_t map_end = at + 4 + file.number(at, 4);
+    std::size_t next_index = chunk + chunk_length, index_bytes = 0;
+    for (at += 4; at < map_end; at += 10) {
+      const std::uint64_t channel = file.number(at, 2);
+      const std::size_t message_index = file.number(at + 2, 8);
+      EXPECT_EQ(message_index, next_index) << "the message indexes follow their chunk";
+      ASSERT_EQ(file.number(message_index, 1), 0x07u);
+      const std::size_t length = file.number(message_index + 1, 8);
+      next_index = message_index + 9 + length;
+      index_bytes += 9 + length;
+      EXPECT_EQ(file.number(message_index + 9, 2), channel);
+      const std::size_t entries = file.number(message_index + 11, 4) / 16;
+      for (std::size_t k = 0; k < entries; ++k) {
+        const std::uint64_t time = file.number(message_index + 15 + 16 * k, 8);
+        const std::size_t offset = file.number(message_index + 23 + 16 * k, 8);
+        ASSERT_EQ(chunk_records.number(offset, 1), 0x05u);
+        EXPECT_EQ(chunk_records.number(offset + 9, 2), channel);
+        EXPECT_EQ(chunk_records.number(offset + 15, 8), time);
+        EXPECT_GE(time, start_time);
+        EXPECT_LE(time, end_time);
+        first_time = std::min(first_time, time);
+        last_time = std::max(last_time, time);
+      }
+      indexed[channel] += entries;
+    }
+    EXPECT_EQ(file.number(at, 8), index_bytes) << "message_index_length";
+    std::size_t compression = at + 8;
+    EXPECT_EQ(file.text(compression), "zstd");
+    EXPECT_EQ(file.number(compression, 8), stored);
+    EXPECT_EQ(file.number(compression + 8, 8), uncompressed);
+  }
+  // The scans, the odometry samples and the one mounting transform, all indexed.
+  EXPECT_EQ(indexed, (std::map<std::uint64_t, std::uint64_t>{{1, 3000}, {2, 3000}, {3, 1}}));
+  EXPECT_EQ(first_time, 0u);
+  EXPECT_EQ(last_time, 299'900'000'000u);
+
+  const std::size_t statistics = records[0x0B].front();
+  EXPECT_EQ(file.number(statistics, 8), 6001u);                      // messages
+  EXPECT_EQ(file.number(statistics + 8, 2), 3u);                     // schemas
+  EXPECT_EQ(file.number(statistics + 10, 4), 3u);                    // channels
+  EXPECT_EQ(file.number(statistics + 22, 4), records[0x08].size());  // chunks
+  EXPECT_EQ(file.number(statistics + 26, 8), first_time);
+  EXPECT_EQ(file.number(statistics + 34, 8), last_time);
+  std::map<std::uint64_t, std::uint64_t> counted;
+  const std::size_t counts_end = statistics + 46 + file.number(statistics + 42, 4);
+  for (std::size_t at = statistics + 46; at < counts_end; at += 10)
+    counted[file.number(at, 2)] = file.number(at + 2, 8);
+  EXPECT_EQ(counted, indexed);
+  // The bag still reads back whole.
+  EXPECT_EQ(readLog(dir.file("long.mcap")).entries.size(), 3000u);
 }
 
 TEST(Rosbag2, AnotherStorageIsAnErrorNamingIt) {

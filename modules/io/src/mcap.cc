@@ -5,6 +5,7 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -25,6 +26,10 @@ enum Opcode : std::uint8_t {
   kChannel = 0x04,
   kMessage = 0x05,
   kChunk = 0x06,
+  kMessageIndex = 0x07,
+  kChunkIndex = 0x08,
+  kStatistics = 0x0B,
+  kSummaryOffset = 0x0E,
   kDataEnd = 0x0F,
 };
 // Bytes of a record's opcode and length.
@@ -175,10 +180,78 @@ class Reader {
   std::vector<std::uint8_t> buffer_;              // a chunk decompressed
 };
 
+// Writes an MCAP file: the data section's chunks, each followed by the index of each channel's
+// messages in it, then the summary section a seeking reader starts from (the schemas,
+// channels, statistics and each chunk's index) and the offsets of its groups.
 class Writer {
  public:
-  explicit Writer(std::string compression) : compression_(std::move(compression)) {}
+  Writer(std::string compression, const std::vector<StoredTopic> &topics)
+      : compression_(std::move(compression)), topics_(topics), out_(std::begin(kMagic), std::end(kMagic)) {
+    record(out_, kHeader, [](std::vector<std::uint8_t> &c) {
+      put(c, std::string("ros2"));
+      put(c, std::string("contour_reg"));
+    });
+    for (std::uint16_t id = 1; id <= topics_.size(); ++id) {
+      schema(out_, id);
+      channel(out_, id);
+    }
+  }
 
+  void message(const StoredMessage &message) {
+    const auto channel = static_cast<std::uint16_t>(message.topic + 1);
+    if (records_.empty()) first_ = last_ = message.log_time;
+    first_ = std::min(first_, message.log_time);
+    last_ = std::max(last_, message.log_time);
+    indexes_[channel].push_back({message.log_time, records_.size()});
+    ++counts_[channel];
+    record(records_, kMessage, [&](std::vector<std::uint8_t> &c) {
+      put<std::uint16_t>(c, channel);
+      put<std::uint32_t>(c, sequence_++);
+      put<std::uint64_t>(c, message.log_time);
+      put<std::uint64_t>(c, message.log_time);
+      c.insert(c.end(), message.data.begin(), message.data.end());
+    });
+    if (records_.size() >= (1u << 20)) chunk();
+  }
+
+  // The file's bytes: the last chunk, the data end, the summary and the footer.
+  const std::vector<std::uint8_t> &finish() {
+    if (!records_.empty()) chunk();
+    record(out_, kDataEnd, [](std::vector<std::uint8_t> &c) { put<std::uint32_t>(c, 0); });
+    const std::uint64_t summary = out_.size();
+    std::vector<std::array<std::uint64_t, 3>> groups;  // opcode, start, length
+    const auto group = [&](std::uint8_t opcode, const auto &records) {
+      const std::uint64_t start = out_.size();
+      records();
+      if (out_.size() > start) groups.push_back({opcode, start, out_.size() - start});
+    };
+    group(kSchema, [&] {
+      for (std::uint16_t id = 1; id <= topics_.size(); ++id) schema(out_, id);
+    });
+    group(kChannel, [&] {
+      for (std::uint16_t id = 1; id <= topics_.size(); ++id) channel(out_, id);
+    });
+    group(kStatistics, [&] { statistics(); });
+    group(kChunkIndex, [&] { out_.insert(out_.end(), chunk_indexes_.begin(), chunk_indexes_.end()); });
+    const std::uint64_t offsets = out_.size();
+    for (const auto &[opcode, start, length] : groups)
+      record(out_, kSummaryOffset, [&](std::vector<std::uint8_t> &c) {
+        put<std::uint8_t>(c, static_cast<std::uint8_t>(opcode));
+        put<std::uint64_t>(c, start);
+        put<std::uint64_t>(c, length);
+      });
+    // The footer's CRC covers the summary up to the footer's own CRC field.
+    out_.push_back(kFooter);
+    put<std::uint64_t>(out_, 20);
+    put<std::uint64_t>(out_, summary);
+    put<std::uint64_t>(out_, offsets);
+    put<std::uint32_t>(
+        out_, static_cast<std::uint32_t>(crc32(0, out_.data() + summary, static_cast<uInt>(out_.size() - summary))));
+    out_.insert(out_.end(), std::begin(kMagic), std::end(kMagic));
+    return out_;
+  }
+
+ private:
   // A record of `opcode` with the content of `fields` appended to `out`.
   template <typename Fields>
   static void record(std::vector<std::uint8_t> &out, std::uint8_t opcode, Fields fields) {
@@ -196,38 +269,116 @@ class Writer {
     put<std::uint32_t>(out, static_cast<std::uint32_t>(text.size()));
     out.insert(out.end(), text.begin(), text.end());
   }
+  // A map or an array of pairs: the entries' byte length, then each pair as First, Second.
+  template <typename First, typename Second, typename Pairs>
+  static void putPairs(std::vector<std::uint8_t> &out, const Pairs &pairs) {
+    std::vector<std::uint8_t> entries;
+    for (const auto &[first, second] : pairs) {
+      put<First>(entries, first);
+      put<Second>(entries, second);
+    }
+    put<std::uint32_t>(out, static_cast<std::uint32_t>(entries.size()));
+    out.insert(out.end(), entries.begin(), entries.end());
+  }
 
-  // The chunk of `records` (message records) appended to `out`.
-  void chunk(std::vector<std::uint8_t> &out, const std::vector<std::uint8_t> &records, std::uint64_t first,
-             std::uint64_t last) const {
+  // The schema and the channel of topic `id` (from 1), under the same id.
+  void schema(std::vector<std::uint8_t> &out, std::uint16_t id) const {
+    record(out, kSchema, [&](std::vector<std::uint8_t> &c) {
+      put<std::uint16_t>(c, id);
+      put(c, topics_[id - 1].type);
+      put(c, std::string("ros2msg"));
+      put(c, messageDefinition(topics_[id - 1].type));
+    });
+  }
+  void channel(std::vector<std::uint8_t> &out, std::uint16_t id) const {
+    record(out, kChannel, [&](std::vector<std::uint8_t> &c) {
+      put<std::uint16_t>(c, id);
+      put<std::uint16_t>(c, id);
+      put(c, topics_[id - 1].name);
+      put(c, topics_[id - 1].message_encoding);
+      put<std::uint32_t>(c, 0);  // metadata: none
+    });
+  }
+
+  // The chunk of the messages since the last, the index of each channel's messages in it, and
+  // the chunk's index for the summary.
+  void chunk() {
     std::vector<std::uint8_t> stored;
     if (compression_ == "zstd") {
-      stored.resize(ZSTD_compressBound(records.size()));
-      const std::size_t size = ZSTD_compress(stored.data(), stored.size(), records.data(), records.size(), 3);
+      stored.resize(ZSTD_compressBound(records_.size()));
+      const std::size_t size = ZSTD_compress(stored.data(), stored.size(), records_.data(), records_.size(), 3);
       if (ZSTD_isError(size)) throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(size));
       stored.resize(size);
     } else if (compression_ == "lz4") {
-      stored.resize(LZ4F_compressFrameBound(records.size(), nullptr));
+      stored.resize(LZ4F_compressFrameBound(records_.size(), nullptr));
       const std::size_t size =
-          LZ4F_compressFrame(stored.data(), stored.size(), records.data(), records.size(), nullptr);
+          LZ4F_compressFrame(stored.data(), stored.size(), records_.data(), records_.size(), nullptr);
       if (LZ4F_isError(size)) throw std::runtime_error(std::string("lz4: ") + LZ4F_getErrorName(size));
       stored.resize(size);
     } else {
-      stored = records;
+      stored = records_;
     }
-    record(out, kChunk, [&](std::vector<std::uint8_t> &c) {
-      put<std::uint64_t>(c, first);
-      put<std::uint64_t>(c, last);
-      put<std::uint64_t>(c, records.size());
-      put<std::uint32_t>(c, static_cast<std::uint32_t>(crc32(0, records.data(), static_cast<uInt>(records.size()))));
+    const std::uint64_t start = out_.size();
+    record(out_, kChunk, [&](std::vector<std::uint8_t> &c) {
+      put<std::uint64_t>(c, first_);
+      put<std::uint64_t>(c, last_);
+      put<std::uint64_t>(c, records_.size());
+      put<std::uint32_t>(c, static_cast<std::uint32_t>(crc32(0, records_.data(), static_cast<uInt>(records_.size()))));
       put(c, compression_);
       put<std::uint64_t>(c, stored.size());
       c.insert(c.end(), stored.begin(), stored.end());
     });
+    const std::uint64_t length = out_.size() - start;
+    std::vector<std::pair<std::uint16_t, std::uint64_t>> index_offsets;  // channel -> its message index
+    for (const auto &[channel, entries] : indexes_) {
+      index_offsets.push_back({channel, out_.size()});
+      record(out_, kMessageIndex, [&](std::vector<std::uint8_t> &c) {
+        put<std::uint16_t>(c, channel);
+        putPairs<std::uint64_t, std::uint64_t>(c, entries);
+      });
+    }
+    record(chunk_indexes_, kChunkIndex, [&](std::vector<std::uint8_t> &c) {
+      put<std::uint64_t>(c, first_);
+      put<std::uint64_t>(c, last_);
+      put<std::uint64_t>(c, start);
+      put<std::uint64_t>(c, length);
+      putPairs<std::uint16_t, std::uint64_t>(c, index_offsets);
+      put<std::uint64_t>(c, out_.size() - start - length);
+      put(c, compression_);
+      put<std::uint64_t>(c, stored.size());
+      put<std::uint64_t>(c, records_.size());
+    });
+    all_first_ = chunks_ == 0 ? first_ : std::min(all_first_, first_);
+    all_last_ = std::max(all_last_, last_);
+    ++chunks_;
+    records_.clear();
+    indexes_.clear();
   }
 
- private:
+  void statistics() {
+    record(out_, kStatistics, [&](std::vector<std::uint8_t> &c) {
+      put<std::uint64_t>(c, sequence_);
+      put<std::uint16_t>(c, static_cast<std::uint16_t>(topics_.size()));  // schemas
+      put<std::uint32_t>(c, static_cast<std::uint32_t>(topics_.size()));  // channels
+      put<std::uint32_t>(c, 0);                                           // attachments
+      put<std::uint32_t>(c, 0);                                           // metadata
+      put<std::uint32_t>(c, chunks_);
+      put<std::uint64_t>(c, all_first_);
+      put<std::uint64_t>(c, all_last_);
+      putPairs<std::uint16_t, std::uint64_t>(c, counts_);
+    });
+  }
+
   std::string compression_;
+  const std::vector<StoredTopic> &topics_;
+  std::vector<std::uint8_t> out_;       // the file so far
+  std::vector<std::uint8_t> records_;   // the messages of the chunk being filled
+  std::uint64_t first_ = 0, last_ = 0;  // their first and last log time
+  std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> indexes_;  // channel -> time, offset
+  std::vector<std::uint8_t> chunk_indexes_;        // the summary's chunk index records
+  std::map<std::uint16_t, std::uint64_t> counts_;  // messages of each channel
+  std::uint32_t sequence_ = 0, chunks_ = 0;
+  std::uint64_t all_first_ = 0, all_last_ = 0;
 };
 
 }  // namespace
@@ -275,54 +426,9 @@ void visitMcap(const std::string &path, const StorageVisitor &visitor) {
 
 void writeMcap(const std::string &path, const std::vector<StoredTopic> &topics,
                const std::vector<StoredMessage> &messages, const std::string &compression) {
-  std::vector<std::uint8_t> out(std::begin(kMagic), std::end(kMagic));
-  Writer::record(out, kHeader, [](std::vector<std::uint8_t> &c) {
-    Writer::put(c, std::string("ros2"));
-    Writer::put(c, std::string("contour_reg"));
-  });
-  for (std::size_t k = 0; k < topics.size(); ++k) {
-    const auto id = static_cast<std::uint16_t>(k + 1);
-    Writer::record(out, kSchema, [&](std::vector<std::uint8_t> &c) {
-      Writer::put<std::uint16_t>(c, id);
-      Writer::put(c, topics[k].type);
-      Writer::put(c, std::string("ros2msg"));
-      Writer::put(c, messageDefinition(topics[k].type));
-    });
-    Writer::record(out, kChannel, [&](std::vector<std::uint8_t> &c) {
-      Writer::put<std::uint16_t>(c, id);
-      Writer::put<std::uint16_t>(c, id);
-      Writer::put(c, topics[k].name);
-      Writer::put(c, topics[k].message_encoding);
-      Writer::put<std::uint32_t>(c, 0);  // metadata: none
-    });
-  }
-  const Writer writer(compression);
-  std::vector<std::uint8_t> records;
-  std::uint64_t first = 0, last = 0;
-  std::uint32_t sequence = 0;
-  for (const StoredMessage &message : messages) {
-    if (records.empty()) first = message.log_time;
-    last = std::max(last, message.log_time);
-    Writer::record(records, kMessage, [&](std::vector<std::uint8_t> &c) {
-      Writer::put<std::uint16_t>(c, static_cast<std::uint16_t>(message.topic + 1));
-      Writer::put<std::uint32_t>(c, sequence++);
-      Writer::put<std::uint64_t>(c, message.log_time);
-      Writer::put<std::uint64_t>(c, message.log_time);
-      c.insert(c.end(), message.data.begin(), message.data.end());
-    });
-    if (records.size() >= (1u << 20)) {
-      writer.chunk(out, records, first, last);
-      records.clear();
-    }
-  }
-  if (!records.empty()) writer.chunk(out, records, first, last);
-  Writer::record(out, kDataEnd, [](std::vector<std::uint8_t> &c) { Writer::put<std::uint32_t>(c, 0); });
-  Writer::record(out, kFooter, [](std::vector<std::uint8_t> &c) {
-    Writer::put<std::uint64_t>(c, 0);  // no summary section
-    Writer::put<std::uint64_t>(c, 0);
-    Writer::put<std::uint32_t>(c, 0);
-  });
-  out.insert(out.end(), std::begin(kMagic), std::end(kMagic));
+  Writer writer(compression, topics);
+  for (const StoredMessage &message : messages) writer.message(message);
+  const std::vector<std::uint8_t> &out = writer.finish();
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   if (!file.write(reinterpret_cast<const char *>(out.data()), static_cast<std::streamsize>(out.size())))
     throw ReadError(path + ": cannot write the bag");

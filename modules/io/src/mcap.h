@@ -19,7 +19,10 @@ void visitMcap(const std::string &path, const StorageVisitor &visitor);
 /// (encoding ros2msg, with the definition text of message_definitions.h, by which a viewer
 /// decodes the messages; ROS 2 bag readers go by the name),
 /// the messages in chunks of up to 1 MB compressed with `compression` ("", "lz4" or "zstd"),
-/// then the data end and footer records. Throws ReadError naming the file when it cannot be written.
+/// each chunk followed by the index of each channel's messages in it (log time, offset), then
+/// the data end, the summary section (schemas, channels, statistics, each chunk's index) and
+/// the footer that points to it, where a reader that seeks starts.
+/// Throws ReadError naming the file when it cannot be written.
 void writeMcap(const std::string &path, const std::vector<StoredTopic> &topics,
                const std::vector<StoredMessage> &messages, const std::string &compression);
 
