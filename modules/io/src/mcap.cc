@@ -234,11 +234,11 @@ class Writer {
     group(kStatistics, [&] { statistics(); });
     group(kChunkIndex, [&] { out_.insert(out_.end(), chunk_indexes_.begin(), chunk_indexes_.end()); });
     const std::uint64_t offsets = out_.size();
-    for (const auto &[opcode, start, length] : groups)
+    for (const std::array<std::uint64_t, 3> &offset : groups)  // opcode, start, length
       record(out_, kSummaryOffset, [&](std::vector<std::uint8_t> &c) {
-        put<std::uint8_t>(c, static_cast<std::uint8_t>(opcode));
-        put<std::uint64_t>(c, start);
-        put<std::uint64_t>(c, length);
+        put<std::uint8_t>(c, static_cast<std::uint8_t>(offset[0]));
+        put<std::uint64_t>(c, offset[1]);
+        put<std::uint64_t>(c, offset[2]);
       });
     // The footer's CRC covers the summary up to the footer's own CRC field.
     out_.push_back(kFooter);
@@ -330,11 +330,11 @@ class Writer {
     });
     const std::uint64_t length = out_.size() - start;
     std::vector<std::pair<std::uint16_t, std::uint64_t>> index_offsets;  // channel -> its message index
-    for (const auto &[channel, entries] : indexes_) {
-      index_offsets.push_back({channel, out_.size()});
+    for (const auto &channel : indexes_) {                               // id, (time, offset) of each message
+      index_offsets.push_back({channel.first, out_.size()});
       record(out_, kMessageIndex, [&](std::vector<std::uint8_t> &c) {
-        put<std::uint16_t>(c, channel);
-        putPairs<std::uint64_t, std::uint64_t>(c, entries);
+        put<std::uint16_t>(c, channel.first);
+        putPairs<std::uint64_t, std::uint64_t>(c, channel.second);
       });
     }
     record(chunk_indexes_, kChunkIndex, [&](std::vector<std::uint8_t> &c) {
