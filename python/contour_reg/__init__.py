@@ -37,6 +37,7 @@ from ._core import (
     simulate,
     triangle_closure,
     write_carmen,
+    write_log,
     write_tum,
 )
 
@@ -44,5 +45,5 @@ __all__ = [
     "Features", "LaserScan", "Log", "OdometryRun", "OdometryStep", "ReadError", "RegistrationResult",
     "SimulatedRun", "evaluate", "features", "matrix_pose", "methods", "normalised_error_squared", "odometry",
     "pose_matrix", "read_log", "read_relations", "read_tum", "register", "relation_errors", "relative_pose",
-    "simulate", "triangle_closure", "write_carmen", "write_tum",
+    "simulate", "triangle_closure", "write_carmen", "write_log", "write_tum",
 ]

@@ -155,6 +155,17 @@ void bindLogs(py::module_ &m) {
       "write_carmen", [](const std::string &path, const io::ScanLog &log) { io::writeCarmen(path, log); },
       py::arg("path"), py::arg("log"), "Writes a log as a CARMEN log (FLASER and ODOM lines).");
   m.def(
+      "write_log",
+      [](const std::string &path, const io::ScanLog &log) {
+        py::gil_scoped_release release;
+        io::writeLog(path, log);
+      },
+      py::arg("path"), py::arg("log"),
+      "Writes a log in the format its name asks for: a ROS 1 bag (.bag), a ROS 2 bag's storage file (.db3: sqlite3, "
+      ".mcap: MCAP, which a viewer such as Foxglove opens) or a CARMEN log (any other name); scans with their beam "
+      "timing, the wheel odometry and the laser's mounting. Raises ReadError naming the file when it cannot be "
+      "written.");
+  m.def(
       "read_tum", [](const std::string &path) { return trajectoryArray(io::readTum(path)); }, py::arg("path"),
       "Reads a TUM trajectory as N x 4 (stamp, x, y, yaw). Raises ReadError naming file and line.");
   m.def(

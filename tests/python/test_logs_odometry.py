@@ -173,6 +173,26 @@ def test_write_and_read_back(tmp_path, s_run):
     np.testing.assert_allclose(cr.read_tum(str(tmp_path / "gt.tum")), s_run.ground_truth, atol=1e-5)
 
 
+@pytest.mark.parametrize("name", ["s.bag", "s.db3", "s.mcap", "s.clf"])
+def test_write_log_writes_the_format_its_name_asks_for(tmp_path, s_run, name):
+    path = tmp_path / name
+    try:
+        cr.write_log(str(path), s_run.log)
+    except cr.ReadError as error:
+        if "cannot write ROS bags" in str(error):
+            pytest.skip("built without ROS bag support")
+        raise
+    again = cr.read_log(str(path))
+    assert len(again) == len(s_run.log)
+    np.testing.assert_allclose(again.stamps, s_run.log.stamps, atol=1e-6)
+    np.testing.assert_allclose(again[4].ranges, s_run.log[4].ranges, atol=1e-3, equal_nan=True)
+    np.testing.assert_allclose(again.odometry, s_run.log.odometry, atol=1e-5)
+    magic = {".bag": b"#ROSBAG V2.0", ".db3": b"SQLite format 3", ".mcap": b"\x89MCAP0\r\n", ".clf": b""}
+    assert path.read_bytes().startswith(magic[path.suffix])
+    with pytest.raises(cr.ReadError, match="nowhere"):
+        cr.write_log(str(tmp_path / "nowhere" / name), s_run.log)
+
+
 def test_the_door_row_has_its_line():
     run = cr.simulate(path="line", map="doors", lidar="ydlidar", rate=0.5, speed=1.0)
     assert run.path_length == pytest.approx(54.0)
