@@ -143,8 +143,8 @@ void bindLogs(py::module_ &m) {
       py::arg("path"), py::arg("max_range") = io::LogReadOptions{}.max_range, py::arg("scan_topic") = "",
       py::arg("odom_topic") = "", py::arg("scan_period") = 0.0, py::arg("laser_pose") = py::none(),
       py::arg("wheel_odometry") = true, py::arg("beam_step") = 1,
-      "Reads a CARMEN log (plain or gzip), a ROS 1 bag, a ROS 2 bag (its folder, a .db3 or a .mcap file) or a folder "
-      "of PCD scans. Readings at or above max_range (m) "
+      "Reads a CARMEN log (plain or gzip), a ROS 1 bag, a ROS 2 bag (its folder, a .db3 or a .mcap file, compressed by "
+      "rosbag2 or not) or a folder of PCD scans. Readings at or above max_range (m) "
       "are no-return; bags: the LaserScan and Odometry topics ('' : the first); scan_period: s per LIDAR turn for "
       "scans without beam timing (beams in index order from the stamp; 0: none); laser_pose: (x m, y m, yaw rad) "
       "of the laser on the robot, over what the log says; wheel_odometry=False: the scans alone, without the log's "

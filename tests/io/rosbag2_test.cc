@@ -637,6 +637,122 @@ TEST(Rosbag2, AWrittenMcapBagHasASummaryThatIndexesEveryMessage) {
   EXPECT_EQ(readLog(dir.file("long.mcap")).entries.size(), 3000u);
 }
 
+// rosbag2's compression (`ros2 bag record --compression-format zstd`): in file mode each
+// storage file is compressed whole into `name.zstd`, in message mode each message's bytes are;
+// both are zstd frames.
+std::string zstdOf(const std::string &bytes) {
+  std::string out(ZSTD_compressBound(bytes.size()), '\0');
+  out.resize(ZSTD_compress(out.data(), out.size(), bytes.data(), bytes.size(), 1));
+  return out;
+}
+std::vector<std::uint8_t> zstdOf(const std::vector<std::uint8_t> &bytes) {
+  const std::string out = zstdOf(std::string(bytes.begin(), bytes.end()));
+  return {out.begin(), out.end()};
+}
+
+TEST(Rosbag2, ABagCompressedFileByFileReadsAsTheBagItHolds) {
+  const std::string zeros = zstdOf(std::string(70u << 20, '\0'));
+  for (const std::string storage : {"db3", "mcap"}) {
+    SCOPED_TRACE(storage);
+    test::TempDir dir;
+    const ScanLog written = timedLog();
+    writeRosbag2(dir.file("run_0." + storage), written);
+    const auto folder = dir.path() / "run";
+    std::filesystem::create_directories(folder);
+    const std::string compressed = zstdOf(test::readBytes(dir.file("run_0." + storage)));
+    std::ofstream((folder / ("run_0." + storage + ".zstd")).string(), std::ios::binary) << compressed;
+    std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
+                                                          "  storage_identifier: "
+                                                       << (storage == "db3" ? "sqlite3" : "mcap")
+                                                       << "\n"
+                                                          "  relative_file_paths: [run_0."
+                                                       << storage
+                                                       << ".zstd]\n"
+                                                          "  compression_format: zstd\n"
+                                                          "  compression_mode: FILE\n";
+    test::expectTimedLogReadBack(readLog(folder.string()), written);
+    // The compressed file alone reads the same.
+    test::expectTimedLogReadBack(readLog((folder / ("run_0." + storage + ".zstd")).string()), written);
+    // One cut short is an error naming it, and so is one that decompresses to far more than a
+    // bag's messages could (70 MB of zeros in 2 kB), before it is written out.
+    const std::string cut = dir.write("cut." + storage + ".zstd", compressed.substr(0, compressed.size() / 2));
+    const std::string bomb = dir.write("bomb." + storage + ".zstd", zeros);
+    for (const auto &[path, why] : {std::pair(cut, "cut short"), std::pair(bomb, "1000 times its size")}) {
+      try {
+        readLog(path);
+        FAIL() << path << " read";
+      } catch (const ReadError &error) {
+        EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find(why), std::string::npos) << error.what();
+      }
+    }
+  }
+}
+
+TEST(Rosbag2, ABagCompressedMessageByMessageReadsItsMessages) {
+  test::TempDir dir;
+  const std::string path = dir.file("messages.db3");
+  std::vector<std::uint8_t> broken = zstdOf(handMadeScan());
+  broken.resize(broken.size() / 2);
+  writeDb3(path, {{9, 11'000'000'000, zstdOf(handMadeMounting())},
+                  {8, 12'000'000'000, zstdOf(handMadeOdometry(12.0, 1.5))},
+                  {7, 12'250'000'000, zstdOf(handMadeScan())},
+                  {7, 12'500'000'000, broken},
+                  {8, 13'000'000'000, zstdOf(handMadeOdometry(13.0, 2.5))}});
+  const ScanLog log = readLog(path);
+  ASSERT_EQ(log.entries.size(), 1u);
+  const LaserScan &scan = log.entries[0].scan;
+  EXPECT_DOUBLE_EQ(scan.stamp, 12.25);
+  ASSERT_EQ(scan.ranges.size(), 3u);
+  EXPECT_FLOAT_EQ(scan.ranges[2], 3.0f);
+  ASSERT_TRUE(log.entries[0].odometry.has_value());
+  EXPECT_NEAR(log.entries[0].odometry->x, 1.75, 1e-9);  // a quarter of the way from the sample at 12 s to 13 s
+  ASSERT_TRUE(log.laser_pose.has_value());
+  EXPECT_NEAR(log.laser_pose->x, 0.2, 1e-12);
+  ASSERT_EQ(log.report.problems.size(), 1u);
+  EXPECT_NE(log.report.problems[0].find("cannot decompress"), std::string::npos) << log.report.problems[0];
+}
+
+TEST(Rosbag2, ABagOfAnotherCompressionIsAnErrorNamingIt) {
+  test::TempDir dir;
+  const auto folder = dir.path() / "run";
+  std::filesystem::create_directories(folder);
+  writeRosbag2((folder / "run_0.db3").string(), timedLog());
+  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
+                                                        "  storage_identifier: sqlite3\n"
+                                                        "  relative_file_paths: [run_0.db3]\n"
+                                                        "  compression_format: brotli\n"
+                                                        "  compression_mode: MESSAGE\n";
+  try {
+    readLog(folder.string());
+    FAIL();
+  } catch (const ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find("brotli"), std::string::npos) << error.what();
+  }
+  // An uncompressed bag's metadata names no compression.
+  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
+                                                        "  storage_identifier: sqlite3\n"
+                                                        "  relative_file_paths: [run_0.db3]\n"
+                                                        "  compression_format: \"\"\n"
+                                                        "  compression_mode: \"\"\n";
+  EXPECT_EQ(readLog(folder.string()).entries.size(), 3u);
+}
+
+// writeLog goes by the name: one that asks for a compressed storage file is refused rather
+// than written as a CARMEN log under that name.
+TEST(Rosbag2, ACompressedStorageFileIsNotWrittenAsAnotherFormat) {
+  test::TempDir dir;
+  for (const std::string name : {"run.mcap.zstd", "run.db3.zstd"}) {
+    try {
+      writeLog(dir.file(name), timedLog());
+      FAIL() << name << " written";
+    } catch (const ReadError &error) {
+      EXPECT_NE(std::string(error.what()).find(name), std::string::npos) << error.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file(name)));
+  }
+}
+
 TEST(Rosbag2, AnotherStorageIsAnErrorNamingIt) {
   test::TempDir dir;
   const auto folder = dir.path() / "run";

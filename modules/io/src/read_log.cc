@@ -72,6 +72,8 @@ ScanLog readLog(const std::string &path, const LogReadOptions &options) {
 
 void writeLog(const std::string &path, const ScanLog &log) {
   const std::filesystem::path extension = std::filesystem::path(path).extension();
+  if (extension == ".zstd")
+    throw ReadError(path + ": compressed storage files are read, not written (an .mcap file's chunks are zstd)");
   if (extension == ".bag")
     writeRosbag(path, log);
   else if (extension == ".db3" || extension == ".mcap")

@@ -15,6 +15,7 @@
 #include "log_assembly.h"
 #include "mcap.h"
 #include "sqlite_storage.h"
+#include "zstd_storage.h"
 
 namespace contour_reg::io {
 
@@ -25,6 +26,16 @@ namespace fs = std::filesystem;
 constexpr char kScanType[] = "sensor_msgs/msg/LaserScan";
 constexpr char kOdometryType[] = "nav_msgs/msg/Odometry";
 constexpr char kTransformsType[] = "tf2_msgs/msg/TFMessage";
+// No message of the types read decompresses to more (a scan of LogReadOptions::max_beams
+// ranges and intensities is under 1 MB).
+constexpr std::size_t kLargestMessage = std::size_t{64} << 20;
+
+// Whether `file` is a storage file of a ROS 2 bag: sqlite3 (.db3) or MCAP (.mcap), either
+// compressed whole by rosbag2 (.zstd after it).
+bool isStorageFile(const fs::path &file) {
+  const fs::path extension = fs::path(detail::withoutZstd(file.string())).extension();
+  return extension == ".db3" || extension == ".mcap";
+}
 
 // The storage files of the bag at `path`, in the order they were recorded.
 std::vector<std::string> storageFiles(const std::string &path) {
@@ -39,6 +50,10 @@ std::vector<std::string> storageFiles(const std::string &path) {
       const std::string storage = information["storage_identifier"].as<std::string>("sqlite3");
       if (storage != "sqlite3" && storage != "mcap")
         throw ReadError(path + ": a ROS 2 bag in " + storage + " storage; sqlite3 and mcap are read");
+      // Compressed by file or by message (compression_mode); each kind is told by its bytes.
+      const std::string compression = information["compression_format"].as<std::string>("");
+      if (!compression.empty() && compression != "zstd")
+        throw ReadError(path + ": a ROS 2 bag compressed with " + compression + "; zstd and uncompressed are read");
       for (const YAML::Node &file : information["relative_file_paths"])
         files.push_back((folder / file.as<std::string>()).string());
     } catch (const YAML::Exception &e) {
@@ -47,8 +62,7 @@ std::vector<std::string> storageFiles(const std::string &path) {
     }
   } else {
     for (const fs::directory_entry &entry : fs::directory_iterator(folder, error))
-      if (entry.path().extension() == ".db3" || entry.path().extension() == ".mcap")
-        files.push_back(entry.path().string());
+      if (isStorageFile(entry.path())) files.push_back(entry.path().string());
     std::sort(files.begin(), files.end());
   }
   if (files.empty()) throw ReadError(path + ": a ROS 2 bag folder without a storage file");
@@ -157,6 +171,16 @@ class BagContents {
     ++index_;
     ++log_.report.lines;
     const std::string where = file + " (" + name + ")";
+    if (detail::isZstdFrame(bytes, size)) {  // a bag compressed message by message
+      try {
+        detail::decompressZstd(bytes, size, kLargestMessage, decompressed_);
+      } catch (const std::exception &e) {
+        log_.report.add(where, index_, std::string("cannot decompress message: ") + e.what());
+        return;
+      }
+      bytes = decompressed_.data();
+      size = decompressed_.size();
+    }
     try {
       detail::CdrReader in(bytes, size);
       if (is_scan) {
@@ -226,9 +250,18 @@ class BagContents {
   detail::TransformTree tree_;
   std::vector<std::pair<std::string, std::string>> topics_;  // (name, type), as met
   std::string scan_topic_, odometry_topic_;
-  std::string scan_frame_, base_frame_;  // of the first scan and the first odometry message
-  std::size_t index_ = 0;                // messages of the topics read, counted from 1
+  std::string scan_frame_, base_frame_;     // of the first scan and the first odometry message
+  std::size_t index_ = 0;                   // messages of the topics read, counted from 1
+  std::vector<std::uint8_t> decompressed_;  // a compressed message's bytes
 };
+
+// The storage file at `path` read as the kind `name`'s extension says: MCAP or sqlite3.
+void visitStorage(const std::string &path, const std::string &name, const detail::StorageVisitor &visitor) {
+  if (fs::path(name).extension() == ".mcap")
+    detail::visitMcap(path, visitor);
+  else
+    detail::visitSqlite(path, visitor);
+}
 
 // The topics and messages of one storage file into `contents`.
 void readStorageFile(const std::string &file, BagContents &contents) {
@@ -243,10 +276,22 @@ void readStorageFile(const std::string &file, BagContents &contents) {
     if (topic != topics.end()) contents.message(file, topic->second.name, topic->second.type, data, size);
   };
   visitor.lost = [&](std::uint64_t byte, const std::string &why) { contents.lost(file, byte, why); };
-  if (fs::path(file).extension() == ".mcap")
-    detail::visitMcap(file, visitor);
-  else
-    detail::visitSqlite(file, visitor);
+  const std::string stored = detail::withoutZstd(file);
+  if (!detail::isZstdFile(file)) {
+    visitStorage(file, stored, visitor);
+    return;
+  }
+  // Compressed whole: read decompressed, and named as the compressed file.
+  const detail::DecompressedFile decompressed(file);
+  try {
+    visitStorage(decompressed.path(), stored, visitor);
+  } catch (const ReadError &error) {
+    std::string what = error.what();
+    for (std::size_t at = what.find(decompressed.path()); at != std::string::npos;
+         at = what.find(decompressed.path(), at + file.size()))
+      what.replace(at, decompressed.path().size(), file);
+    throw ReadError(what);
+  }
 }
 
 }  // namespace
@@ -254,10 +299,10 @@ void readStorageFile(const std::string &file, BagContents &contents) {
 bool isRosbag2(const std::string &path) {
   std::error_code error;
   const fs::path p(path);
-  if (!fs::is_directory(p, error)) return p.extension() == ".db3" || p.extension() == ".mcap";
+  if (!fs::is_directory(p, error)) return isStorageFile(p);
   if (fs::exists(p / "metadata.yaml", error)) return true;
   for (const fs::directory_entry &entry : fs::directory_iterator(p, error))
-    if (entry.path().extension() == ".db3" || entry.path().extension() == ".mcap") return true;
+    if (isStorageFile(entry.path())) return true;
   return false;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 /// @file read_log.h
 /// One entry point for every scan source: a CARMEN log (`.clf`, `.log`, `.gz`, anything
-/// else), a ROS 1 bag (`.bag`), a ROS 2 bag (its folder, or a `.db3` or `.mcap` file) or a folder of PCD
-/// scans (a directory).
+/// else), a ROS 1 bag (`.bag`), a ROS 2 bag (its folder, or a `.db3` or `.mcap` file, either
+/// compressed by rosbag2 as `.zstd`) or a folder of PCD scans (a directory).
 
 #include <optional>
 #include <string>
@@ -53,8 +53,8 @@ void leaveOutWheelOdometry(ScanLog &log);
 std::size_t nearestEntry(const ScanLog &log, double stamp);
 
 /// Writes `log` in the format its name asks for: a ROS 1 bag (.bag), a ROS 2 bag's storage
-/// file (.db3: sqlite3, .mcap: MCAP) or a CARMEN log (any other name). Throws ReadError naming
-/// the file when it cannot be written.
+/// file (.db3: sqlite3, .mcap: MCAP) or a CARMEN log (any other name but *.zstd, which
+/// is refused). Throws ReadError naming the file when it cannot be written.
 void writeLog(const std::string &path, const ScanLog &log);
 
 }  // namespace contour_reg::io
