@@ -106,6 +106,8 @@ DecompressedFile::DecompressedFile(const std::string &from) {
       });
     }
     if (last != 0) throw std::runtime_error("the file ends inside a zstd frame (cut short?)");
+    out.close();
+    if (!out) throw std::runtime_error("cannot write the temporary file " + path_);
   } catch (const std::runtime_error &error) {
     std::remove(path_.c_str());
     throw ReadError(from + ": " + error.what());
