@@ -96,6 +96,19 @@ std::vector<std::uint8_t> handMadeMounting() {
   return b.data();
 }
 
+// tf2_msgs/msg/TFMessage with one transform "odom" -> "base_link" at `stamp_s`: the wheel
+// odometry as a robot's tf gives it, x `x`, y -2, yaw 90 deg ("odom" ends at 21, so the child's
+// length is padded to 24; "base_link" ends at 38, the doubles from 40).
+std::vector<std::uint8_t> handMadeOdometryTransform(double stamp_s, double x) {
+  Bytes b;
+  b.at<std::uint32_t>(0, 1).at<std::int32_t>(4, static_cast<std::int32_t>(stamp_s)).at<std::uint32_t>(8, 0);
+  b.at<std::uint32_t>(12, 5).text(16, "odom");
+  b.at<std::uint32_t>(24, 10).text(28, "base_link");
+  b.at<double>(40, x).at<double>(48, -2.0).at<double>(56, 0.0);
+  b.at<double>(64, 0.0).at<double>(72, 0.0).at<double>(80, std::sqrt(0.5)).at<double>(88, std::sqrt(0.5));
+  return b.data();
+}
+
 struct Message {
   int topic;
   std::int64_t stamp_ns;
@@ -114,7 +127,8 @@ void writeDb3(const std::string &path, const std::vector<Message> &messages) {
                          "INSERT INTO topics VALUES(7, '/front/scan', 'sensor_msgs/msg/LaserScan', 'cdr', '');"
                          "INSERT INTO topics VALUES(8, '/wheel/odom', 'nav_msgs/msg/Odometry', 'cdr', '');"
                          "INSERT INTO topics VALUES(9, '/tf_static', 'tf2_msgs/msg/TFMessage', 'cdr', '');"
-                         "INSERT INTO topics VALUES(10, '/chatter', 'std_msgs/msg/String', 'cdr', '');",
+                         "INSERT INTO topics VALUES(10, '/chatter', 'std_msgs/msg/String', 'cdr', '');"
+                         "INSERT INTO topics VALUES(11, '/tf', 'tf2_msgs/msg/TFMessage', 'cdr', '');",
                          nullptr, nullptr, nullptr),
             SQLITE_OK);
   sqlite3_stmt *insert = nullptr;
@@ -152,16 +166,35 @@ TEST(Rosbag2, HandLaidMessagesReadAsTheirFieldsSay) {
   EXPECT_FLOAT_EQ(scan.ranges[0], 1.0f);
   EXPECT_TRUE(std::isnan(scan.ranges[1])) << "25 m is beyond range_max 20 m";
   EXPECT_FLOAT_EQ(scan.ranges[2], 3.0f);
-  // The odometry at the scan's stamp: a quarter of the way from x 1.5 to 2.5.
-  ASSERT_TRUE(log.entries[0].odometry.has_value());
-  EXPECT_NEAR(log.entries[0].odometry->x, 1.75, 1e-9);
-  EXPECT_NEAR(log.entries[0].odometry->y, -2.0, 1e-9);
-  EXPECT_NEAR(log.entries[0].odometry->yaw, M_PI / 2, 1e-9);
-  ASSERT_EQ(log.wheel_odometry.size(), 2u);
+  test::expectOdometryAQuarterOfTheWay(log);
   // The mounting: the scan's frame "laser" in the odometry's child frame "base_link".
   ASSERT_TRUE(log.laser_pose.has_value());
   EXPECT_NEAR(log.laser_pose->x, 0.2, 1e-12);
   EXPECT_NEAR(std::abs(log.laser_pose->yaw), M_PI, 1e-12);
+}
+
+// Many bags carry a robot's wheel odometry only as tf, the transform from "odom" to the robot's
+// frame (REP 105), with no nav_msgs/Odometry topic: it is the log's odometry then.
+TEST(Rosbag2, OdometryOnlyAsTransformsIsTheLogsOdometry) {
+  test::TempDir dir;
+  const std::string path = dir.file("tf.db3");
+  writeDb3(path, {{9, 11'000'000'000, handMadeMounting()},
+                  {11, 12'000'000'000, handMadeOdometryTransform(12.0, 1.5)},
+                  {7, 12'250'000'000, handMadeScan()},
+                  {11, 13'000'000'000, handMadeOdometryTransform(13.0, 2.5)}});
+  const ScanLog log = readLog(path);
+  EXPECT_TRUE(log.report.problems.empty()) << log.report.problems.front();
+  test::expectOdometryAQuarterOfTheWay(log);
+  ASSERT_TRUE(log.laser_pose.has_value());
+  EXPECT_NEAR(log.laser_pose->x, 0.2, 1e-12);
+  // An Odometry topic, where the bag has one, is the odometry.
+  const std::string both = dir.file("both.db3");
+  writeDb3(both, {{11, 12'000'000'000, handMadeOdometryTransform(12.0, 7.0)},
+                  {8, 12'000'000'000, handMadeOdometry(12.0, 1.5)},
+                  {7, 12'250'000'000, handMadeScan()},
+                  {8, 13'000'000'000, handMadeOdometry(13.0, 2.5)},
+                  {11, 13'000'000'000, handMadeOdometryTransform(13.0, 8.0)}});
+  test::expectOdometryAQuarterOfTheWay(readLog(both));
 }
 
 TEST(Rosbag2, ABigEndianMessageReadsTheSame) {
@@ -705,8 +738,7 @@ TEST(Rosbag2, ABagCompressedMessageByMessageReadsItsMessages) {
   EXPECT_DOUBLE_EQ(scan.stamp, 12.25);
   ASSERT_EQ(scan.ranges.size(), 3u);
   EXPECT_FLOAT_EQ(scan.ranges[2], 3.0f);
-  ASSERT_TRUE(log.entries[0].odometry.has_value());
-  EXPECT_NEAR(log.entries[0].odometry->x, 1.75, 1e-9);  // a quarter of the way from the sample at 12 s to 13 s
+  test::expectOdometryAQuarterOfTheWay(log);
   ASSERT_TRUE(log.laser_pose.has_value());
   EXPECT_NEAR(log.laser_pose->x, 0.2, 1e-12);
   ASSERT_EQ(log.report.problems.size(), 1u);

@@ -10,6 +10,12 @@
 #include "temp_dir.h"
 #include "timed_log.h"
 
+#ifdef CONTOUR_REG_HAVE_ROSBAG
+#include <rosbag/bag.h>
+#include <sensor_msgs/LaserScan.h>
+#include <tf2_msgs/TFMessage.h>
+#endif
+
 namespace contour_reg::io {
 namespace {
 
@@ -41,6 +47,54 @@ TEST(Rosbag, AWrittenBagReadsBackWithBeamTimingAndOdometry) {
   EXPECT_FLOAT_EQ(static_cast<float>(with_period.entries[0].scan.time_increment), 0.01f);
   EXPECT_NEAR(with_period.entries[1].scan.time_increment, 0.1 * 0.5 / (2 * M_PI), 1e-9);
 }
+
+#ifdef CONTOUR_REG_HAVE_ROSBAG
+// A transform `parent` -> `child` at `stamp` s, x `x`, y -2, yaw 90 deg.
+tf2_msgs::TFMessage transformAt(double stamp, const std::string &parent, const std::string &child, double x) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time(stamp);
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = x;
+  t.transform.translation.y = -2.0;
+  t.transform.rotation.z = t.transform.rotation.w = std::sqrt(0.5);
+  tf2_msgs::TFMessage message;
+  message.transforms.push_back(t);
+  return message;
+}
+
+// Many bags carry a robot's wheel odometry only as tf, the transform from "odom" to the robot's
+// frame (REP 105; here base_footprint, the laser on it through base_link), with no
+// nav_msgs/Odometry topic: it is the log's odometry then.
+TEST(Rosbag, OdometryOnlyAsTransformsIsTheLogsOdometry) {
+  test::TempDir dir;
+  const std::string path = dir.file("tf.bag");
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    bag.write("/tf_static", ros::Time(11.0), transformAt(11.0, "base_footprint", "base_link", 0.0));
+    bag.write("/tf_static", ros::Time(11.0), transformAt(11.0, "base_link", "laser", 0.1));
+    bag.write("/tf", ros::Time(12.0), transformAt(12.0, "odom", "base_footprint", 1.5));
+    sensor_msgs::LaserScan scan;
+    scan.header.stamp = ros::Time(12.25);
+    scan.header.frame_id = "laser";
+    scan.angle_min = -1.5f;
+    scan.angle_increment = 0.5f;
+    scan.angle_max = -0.5f;
+    scan.range_max = 20.0f;
+    scan.ranges = {1.0f, 2.0f, 3.0f};
+    bag.write("/scan", ros::Time(12.25), scan);
+    bag.write("/tf", ros::Time(13.0), transformAt(13.0, "odom", "base_footprint", 2.5));
+  }
+  const ScanLog log = readLog(path);
+  EXPECT_TRUE(log.report.problems.empty()) << log.report.problems.front();
+  test::expectOdometryAQuarterOfTheWay(log);
+  // The laser on base_footprint: base_link's pose composed with the laser's on it.
+  ASSERT_TRUE(log.laser_pose.has_value());
+  EXPECT_NEAR(log.laser_pose->x, 2.0, 1e-9);
+  EXPECT_NEAR(log.laser_pose->y, -2.0 + 0.1, 1e-9);
+  EXPECT_NEAR(std::abs(log.laser_pose->yaw), M_PI, 1e-9);
+}
+#endif
 
 // timedLog() written as a bag at `path`, then `replacement` written over its bytes `offset`
 // past the first (or, with `last`, the last) place where `pattern` occurs. False when the

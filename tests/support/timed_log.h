@@ -46,4 +46,15 @@ inline void expectTimedLogReadBack(const io::ScanLog &read, const io::ScanLog &w
   }
 }
 
+// Checks the odometry of the bag tests' one scan at 12.25 s, between the samples at 12 s (x 1.5)
+// and 13 s (x 2.5), both at y -2 and 90 deg: a quarter of the way from one to the other.
+inline void expectOdometryAQuarterOfTheWay(const io::ScanLog &log) {
+  ASSERT_EQ(log.entries.size(), 1u);
+  ASSERT_TRUE(log.entries[0].odometry.has_value());
+  EXPECT_NEAR(log.entries[0].odometry->x, 1.75, 1e-9);
+  EXPECT_NEAR(log.entries[0].odometry->y, -2.0, 1e-9);
+  EXPECT_NEAR(log.entries[0].odometry->yaw, M_PI / 2, 1e-9);
+  EXPECT_EQ(log.wheel_odometry.size(), 2u);
+}
+
 }  // namespace contour_reg::test

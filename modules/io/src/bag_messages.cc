@@ -10,6 +10,9 @@ namespace contour_reg::io::detail {
 
 namespace {
 
+// The frame wheel odometry is given in (REP 105): its children's poses in it are odometry.
+constexpr char kOdometryFrame[] = "odom";
+
 // Why the message's beam timing cannot be used (empty when it can): beams are taken in
 // index order, time_increment apart, and the sweep fits in the scan period (scan_time).
 std::string beamTimingProblem(const ScanMessage &message) {
@@ -85,9 +88,20 @@ double yawOfQuaternion(double x, double y, double z, double w) {
   return std::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z));
 }
 
-void TransformTree::add(const std::string &parent, const std::string &child, const Pose2D &child_in_parent) {
-  if (std::isfinite(child_in_parent.x + child_in_parent.y + child_in_parent.yaw))
-    parent_of_.emplace(frameName(child), std::make_pair(frameName(parent), child_in_parent));
+void TransformTree::add(const std::string &parent, const std::string &child, const Pose2D &child_in_parent,
+                        double stamp) {
+  if (!std::isfinite(child_in_parent.x + child_in_parent.y + child_in_parent.yaw)) return;
+  parent_of_.emplace(frameName(child), std::make_pair(frameName(parent), child_in_parent));
+  if (frameName(parent) == kOdometryFrame && std::isfinite(stamp))
+    odometry_of_[frameName(child)].push_back({stamp, child_in_parent});
+}
+
+std::optional<std::pair<std::string, std::vector<StampedPose>>> TransformTree::odometryOf(
+    const std::string &scan_frame) const {
+  for (const auto &[robot, poses] : odometry_of_)
+    if (poseIn(robot, frameName(scan_frame))) return std::make_pair(robot, poses);
+  if (odometry_of_.size() == 1) return *odometry_of_.begin();
+  return std::nullopt;
 }
 
 std::optional<Pose2D> TransformTree::poseIn(const std::string &base, std::string frame) const {
@@ -107,7 +121,14 @@ void finishBagLog(const std::string &path, const TransformTree &tree, const std:
   if (log.entries.empty())
     throw ReadError(path + ": no usable scan in " + std::to_string(log.report.lines) + " messages" +
                     (log.report.problems.empty() ? "" : " (first problem: " + log.report.problems.front() + ")"));
-  if (!scan_frame.empty()) log.laser_pose = tree.poseIn(base_frame.empty() ? "base_link" : base_frame, scan_frame);
+  std::string base = base_frame.empty() ? "base_link" : base_frame;
+  if (odometry.empty()) {
+    if (auto from_tf = tree.odometryOf(scan_frame)) {
+      base = from_tf->first;
+      odometry = std::move(from_tf->second);
+    }
+  }
+  if (!scan_frame.empty()) log.laser_pose = tree.poseIn(base, scan_frame);
   finishLog(log, std::move(odometry));
 }
 

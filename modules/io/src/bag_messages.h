@@ -42,23 +42,31 @@ std::string frameName(std::string name);
 /// The yaw of a unit quaternion (x, y, z, w).
 double yawOfQuaternion(double x, double y, double z, double w);
 
-/// The transforms of a bag's tf tree that do not move: each child frame's first pose in its
-/// parent, planar part.
+/// A bag's tf tree, planar part: the transforms that do not move (each child frame's first pose
+/// in its parent), and the wheel odometry tf carries, the poses of the children of the
+/// odometry frame "odom" (REP 105) over time.
 class TransformTree {
  public:
-  /// Keeps `child`'s pose in `parent` unless the child has one already or it is not finite.
-  void add(const std::string &parent, const std::string &child, const Pose2D &child_in_parent);
+  /// Keeps `child`'s pose in `parent` unless the child has one already or it is not finite; a
+  /// finite pose of a child of "odom" is also kept as that child's odometry at `stamp` (s).
+  void add(const std::string &parent, const std::string &child, const Pose2D &child_in_parent, double stamp);
   /// `frame`'s pose in `base`, through its chain of parents; none when the chain does not reach it.
   std::optional<Pose2D> poseIn(const std::string &base, std::string frame) const;
+  /// The odometry tf gives the robot that carries `scan_frame`: the child of "odom" whose chain of
+  /// children reaches it (or the only child of "odom"), with its poses over time; none without.
+  std::optional<std::pair<std::string, std::vector<StampedPose>>> odometryOf(const std::string &scan_frame) const;
 
  private:
   std::map<std::string, std::pair<std::string, Pose2D>> parent_of_;  // child -> (parent, child in parent)
+  std::map<std::string, std::vector<StampedPose>> odometry_of_;      // child of "odom" -> its poses
 };
 
 /// What both bag readers do after the last message: a log without a usable scan is an error
-/// naming `path`; the laser's mounting is the first scan's frame (`scan_frame`) in the
-/// odometry's child frame (`base_frame`, "base_link" when empty) through `tree`; then the
-/// scans are put in stamp order with the odometry at their stamps (finishLog).
+/// naming `path`; without `odometry` (no Odometry topic), the odometry is what tf gives
+/// (TransformTree::odometryOf) and its child frame the base frame; the laser's mounting is the
+/// first scan's frame (`scan_frame`) in the odometry's child frame (`base_frame`, "base_link"
+/// when empty) through `tree`; then the scans are put in stamp order with the odometry at their
+/// stamps (finishLog).
 void finishBagLog(const std::string &path, const TransformTree &tree, const std::string &scan_frame,
                   const std::string &base_frame, std::vector<StampedPose> odometry, ScanLog &log);
 

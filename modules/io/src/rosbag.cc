@@ -188,7 +188,8 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
           if (auto transforms = decoded<tf2_msgs::TFMessage>(message, transformsFit))
             for (const geometry_msgs::TransformStamped &t : transforms->transforms)
               tree.add(t.header.frame_id, t.child_frame_id,
-                       {t.transform.translation.x, t.transform.translation.y, yawOf(t.transform.rotation)});
+                       {t.transform.translation.x, t.transform.translation.y, yawOf(t.transform.rotation)},
+                       t.header.stamp.toSec());
         } else if (auto odom = message.instantiate<nav_msgs::Odometry>()) {
           if (base_frame.empty()) base_frame = detail::frameName(odom->child_frame_id);
           const auto &pose = odom->pose.pose;

@@ -201,9 +201,9 @@ class BagContents {
       } else {
         const auto count = in.read<std::uint32_t>();
         for (std::uint32_t k = 0; k < count; ++k) {
-          stampOf(in);
+          const double stamp = stampOf(in);
           const std::string parent = in.readString(), child = in.readString();
-          tree_.add(parent, child, planarPose(in));
+          tree_.add(parent, child, planarPose(in), stamp);
         }
       }
     } catch (const std::exception &e) {

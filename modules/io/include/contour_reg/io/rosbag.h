@@ -4,14 +4,14 @@
 /// nav_msgs/Odometry and tf2_msgs/TFMessage messages, read through Debian's rosbag_storage library.
 ///
 /// A scan's stamp is its header stamp; its odometry is the Odometry pose interpolated at
-/// that stamp. Ranges outside [range_min, min(range_max, max_range)) become NaN. The beam
-/// timing is the message's time_increment (LaserScan::time_increment; sensor_msgs' stamp is
-/// the first beam's time); a negative one, or one whose sweep is longer than scan_time, is
-/// reported and the scan read without timing. The laser's mounting (ScanLog::laser_pose) is
-/// the pose of the first scan's frame in the odometry's child frame (base_link when the bag
-/// has no odometry), through the chain of the tf2_msgs/TFMessage topics' transforms (each
-/// frame's first). A message that cannot be decoded is skipped and reported with its topic
-/// and index.
+/// that stamp or, in a bag without an Odometry topic, the pose tf gives the robot in "odom"
+/// (REP 105: the transforms from "odom" to the frame that carries the laser). Ranges outside [range_min, min(range_max,
+/// max_range)) become NaN. The beam timing is the message's time_increment (LaserScan::time_increment; sensor_msgs'
+/// stamp is the first beam's time); a negative one, or one whose sweep is longer than scan_time, is reported and the
+/// scan read without timing. The laser's mounting (ScanLog::laser_pose) is the pose of the first scan's frame in the
+/// odometry's child frame (base_link when the bag has no odometry at all), through the chain of the tf2_msgs/TFMessage
+/// topics' transforms (each frame's first). A message that cannot be decoded is skipped and reported with its topic and
+/// index.
 
 #include <string>
 

@@ -10,7 +10,8 @@
 /// message's bytes a zstd frame); each is told by the zstd magic number of its bytes.
 ///
 /// What is read is what readRosbag reads of a ROS 1 bag: a scan's stamp is its header stamp,
-/// its odometry the Odometry pose interpolated at that stamp, its beam timing the message's
+/// its odometry the Odometry pose interpolated at that stamp (or tf's pose of the robot in
+/// "odom" in a bag without Odometry), its beam timing the message's
 /// time_increment, the laser's mounting the first scan's frame in the odometry's child frame
 /// (base_link without odometry) through the TFMessage topics' first transforms of each
 /// frame. A message that cannot be decoded is skipped and reported with its file, topic and
