@@ -78,7 +78,8 @@ inline void addReadOptions(CLI::App &command, io::LogReadOptions &options) {
   command.add_option("--max-range", options.max_range, "Readings at or above are no-return (m, > 0)")
       ->capture_default_str()
       ->check(positive());
-  command.add_option("--scan-topic", options.scan_topic, "Bags: sensor_msgs/LaserScan topic (default: the first)");
+  command.add_option("--scan-topic", options.scan_topic,
+                     "Bags: sensor_msgs/LaserScan or MultiEchoLaserScan topic (default: the first LaserScan one)");
   command.add_option("--odom-topic", options.odometry_topic, "Bags: nav_msgs/Odometry topic (default: the first)");
   command.add_flag("--wheel-odometry,!--no-wheel-odometry", options.wheel_odometry,
                    "Read the log's wheel odometry (on by default; --no-wheel-odometry: the scans alone, as from a "

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -109,28 +110,49 @@ std::vector<std::uint8_t> handMadeOdometryTransform(double stamp_s, double x) {
   return b.data();
 }
 
+// sensor_msgs/msg/MultiEchoLaserScan as handMadeScan() lays out its fields, then three beams of
+// 2, 0 and 1 echoes (each a sequence of float32: 1.2 and 1.5 m, none, 3 m), no intensities.
+std::vector<std::uint8_t> handMadeMultiEchoScan() {
+  Bytes b;
+  b.at<std::int32_t>(0, 12).at<std::uint32_t>(4, 250000000u).at<std::uint32_t>(8, 6).text(12, "laser");
+  b.at<float>(20, -1.5f).at<float>(24, -0.5f).at<float>(28, 0.5f);  // angle_min, angle_max, angle_increment
+  b.at<float>(32, 0.001f).at<float>(36, 0.1f);                      // time_increment, scan_time
+  b.at<float>(40, 0.1f).at<float>(44, 20.0f);                       // range_min, range_max
+  b.at<std::uint32_t>(48, 3);                                       // beams
+  b.at<std::uint32_t>(52, 2).at<float>(56, 1.2f).at<float>(60, 1.5f);
+  b.at<std::uint32_t>(64, 0);
+  b.at<std::uint32_t>(68, 1).at<float>(72, 3.0f);
+  b.at<std::uint32_t>(76, 0);  // no intensities
+  return b.data();
+}
+
 struct Message {
   int topic;
   std::int64_t stamp_ns;
   std::vector<std::uint8_t> data;
 };
 
-// A .db3 file with rosbag2's sqlite3 schema, written with SQLite directly.
+// A .db3 file with rosbag2's sqlite3 schema, written with SQLite directly: the topics of the
+// messages (numbered as below), then the messages.
 void writeDb3(const std::string &path, const std::vector<Message> &messages) {
+  const std::map<int, std::string> topics = {{7, "'/front/scan', 'sensor_msgs/msg/LaserScan'"},
+                                             {8, "'/wheel/odom', 'nav_msgs/msg/Odometry'"},
+                                             {9, "'/tf_static', 'tf2_msgs/msg/TFMessage'"},
+                                             {10, "'/chatter', 'std_msgs/msg/String'"},
+                                             {11, "'/tf', 'tf2_msgs/msg/TFMessage'"},
+                                             {12, "'/horizontal_laser_2d', 'sensor_msgs/msg/MultiEchoLaserScan'"}};
+  std::set<int> used;
+  for (const Message &m : messages) used.insert(m.topic);
+  std::string tables =
+      "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,"
+      " serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
+      "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL,"
+      " timestamp INTEGER NOT NULL, data BLOB NOT NULL);";
+  for (const int id : used)
+    tables += "INSERT INTO topics VALUES(" + std::to_string(id) + ", " + topics.at(id) + ", 'cdr', '');";
   sqlite3 *db = nullptr;
   ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db,
-                         "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,"
-                         " serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
-                         "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL,"
-                         " timestamp INTEGER NOT NULL, data BLOB NOT NULL);"
-                         "INSERT INTO topics VALUES(7, '/front/scan', 'sensor_msgs/msg/LaserScan', 'cdr', '');"
-                         "INSERT INTO topics VALUES(8, '/wheel/odom', 'nav_msgs/msg/Odometry', 'cdr', '');"
-                         "INSERT INTO topics VALUES(9, '/tf_static', 'tf2_msgs/msg/TFMessage', 'cdr', '');"
-                         "INSERT INTO topics VALUES(10, '/chatter', 'std_msgs/msg/String', 'cdr', '');"
-                         "INSERT INTO topics VALUES(11, '/tf', 'tf2_msgs/msg/TFMessage', 'cdr', '');",
-                         nullptr, nullptr, nullptr),
-            SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, tables.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
   sqlite3_stmt *insert = nullptr;
   ASSERT_EQ(
       sqlite3_prepare_v2(db, "INSERT INTO messages(topic_id, timestamp, data) VALUES(?, ?, ?)", -1, &insert, nullptr),
@@ -195,6 +217,40 @@ TEST(Rosbag2, OdometryOnlyAsTransformsIsTheLogsOdometry) {
                   {8, 13'000'000'000, handMadeOdometry(13.0, 2.5)},
                   {11, 13'000'000'000, handMadeOdometryTransform(13.0, 8.0)}});
   test::expectOdometryAQuarterOfTheWay(readLog(both));
+}
+
+// Some LIDARs' drivers publish every echo of a beam (sensor_msgs/msg/MultiEchoLaserScan, as
+// Cartographer's public 2-D bags carry them): each beam's first echo is its range, a beam
+// without one no return. A LaserScan topic, where the bag has one, is read first.
+TEST(Rosbag2, AMultiEchoScanReadsAsItsFirstEchoes) {
+  test::TempDir dir;
+  const std::string path = dir.file("echoes.db3");
+  writeDb3(path, {{12, 12'250'000'000, handMadeMultiEchoScan()}});
+  const ScanLog log = readLog(path);
+  EXPECT_TRUE(log.report.problems.empty()) << log.report.problems.front();
+  ASSERT_EQ(log.entries.size(), 1u);
+  const LaserScan &scan = log.entries[0].scan;
+  EXPECT_DOUBLE_EQ(scan.stamp, 12.25);
+  EXPECT_FLOAT_EQ(static_cast<float>(scan.angle_increment), 0.5f);
+  ASSERT_EQ(scan.ranges.size(), 3u);
+  EXPECT_FLOAT_EQ(scan.ranges[0], 1.2f);
+  EXPECT_TRUE(std::isnan(scan.ranges[1]));
+  EXPECT_FLOAT_EQ(scan.ranges[2], 3.0f);
+  // Named, it is read beside a LaserScan topic; unnamed, the LaserScan topic is.
+  const std::string both = dir.file("both.db3");
+  writeDb3(both, {{12, 12'250'000'000, handMadeMultiEchoScan()}, {7, 12'300'000'000, handMadeScan()}});
+  EXPECT_FLOAT_EQ(readLog(both).entries[0].scan.ranges[0], 1.0f);
+  LogReadOptions options;
+  options.scan_topic = "/horizontal_laser_2d";
+  EXPECT_FLOAT_EQ(readLog(both, options).entries[0].scan.ranges[0], 1.2f);
+  // Beams that declare more echoes than the message holds: the scan is named, not read.
+  std::vector<std::uint8_t> corrupt = handMadeMultiEchoScan();
+  corrupt[4 + 68] = 0xff;  // the third beam's echo count
+  writeDb3(dir.file("corrupt.db3"), {{12, 12'250'000'000, corrupt}, {12, 12'500'000'000, handMadeMultiEchoScan()}});
+  const ScanLog read = readLog(dir.file("corrupt.db3"));
+  EXPECT_EQ(read.entries.size(), 1u);
+  ASSERT_EQ(read.report.problems.size(), 1u);
+  EXPECT_NE(read.report.problems[0].find("longer than the message"), std::string::npos) << read.report.problems[0];
 }
 
 TEST(Rosbag2, ABigEndianMessageReadsTheSame) {

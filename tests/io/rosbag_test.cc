@@ -13,6 +13,7 @@
 #ifdef CONTOUR_REG_HAVE_ROSBAG
 #include <rosbag/bag.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/MultiEchoLaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 #endif
 
@@ -63,6 +64,20 @@ tf2_msgs::TFMessage transformAt(double stamp, const std::string &parent, const s
   return message;
 }
 
+// A scan message (sensor_msgs/LaserScan or MultiEchoLaserScan) at 12.25 s in frame "laser":
+// three beams from -1.5 rad, 0.5 rad apart, range_max 20 m; its ranges left to fill.
+template <typename Message>
+Message scanMessage() {
+  Message message;
+  message.header.stamp = ros::Time(12.25);
+  message.header.frame_id = "laser";
+  message.angle_min = -1.5f;
+  message.angle_increment = 0.5f;
+  message.angle_max = -0.5f;
+  message.range_max = 20.0f;
+  return message;
+}
+
 // Many bags carry a robot's wheel odometry only as tf, the transform from "odom" to the robot's
 // frame (REP 105; here base_footprint, the laser on it through base_link), with no
 // nav_msgs/Odometry topic: it is the log's odometry then.
@@ -74,13 +89,7 @@ TEST(Rosbag, OdometryOnlyAsTransformsIsTheLogsOdometry) {
     bag.write("/tf_static", ros::Time(11.0), transformAt(11.0, "base_footprint", "base_link", 0.0));
     bag.write("/tf_static", ros::Time(11.0), transformAt(11.0, "base_link", "laser", 0.1));
     bag.write("/tf", ros::Time(12.0), transformAt(12.0, "odom", "base_footprint", 1.5));
-    sensor_msgs::LaserScan scan;
-    scan.header.stamp = ros::Time(12.25);
-    scan.header.frame_id = "laser";
-    scan.angle_min = -1.5f;
-    scan.angle_increment = 0.5f;
-    scan.angle_max = -0.5f;
-    scan.range_max = 20.0f;
+    auto scan = scanMessage<sensor_msgs::LaserScan>();
     scan.ranges = {1.0f, 2.0f, 3.0f};
     bag.write("/scan", ros::Time(12.25), scan);
     bag.write("/tf", ros::Time(13.0), transformAt(13.0, "odom", "base_footprint", 2.5));
@@ -93,6 +102,48 @@ TEST(Rosbag, OdometryOnlyAsTransformsIsTheLogsOdometry) {
   EXPECT_NEAR(log.laser_pose->x, 2.0, 1e-9);
   EXPECT_NEAR(log.laser_pose->y, -2.0 + 0.1, 1e-9);
   EXPECT_NEAR(std::abs(log.laser_pose->yaw), M_PI, 1e-9);
+}
+
+// Some LIDARs' drivers publish every echo of a beam (sensor_msgs/MultiEchoLaserScan, as
+// Cartographer's public 2-D bags carry them): each beam's first echo is its range, a beam
+// without one no return. A LaserScan topic, where the bag has one, is read first.
+TEST(Rosbag, AMultiEchoScanReadsAsItsFirstEchoes) {
+  test::TempDir dir;
+  auto echoes = scanMessage<sensor_msgs::MultiEchoLaserScan>();
+  echoes.ranges.resize(3);
+  echoes.ranges[0].echoes = {1.2f, 1.5f};
+  echoes.ranges[2].echoes = {3.0f};
+  auto single = scanMessage<sensor_msgs::LaserScan>();
+  single.ranges = {1.0f, 2.0f, 3.0f};
+  const std::string path = dir.file("echoes.bag"), both = dir.file("both.bag");
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    bag.write("/horizontal_laser_2d", ros::Time(12.25), echoes);
+    rosbag::Bag with_single(both, rosbag::bagmode::Write);
+    with_single.write("/horizontal_laser_2d", ros::Time(12.25), echoes);
+    with_single.write("/scan", ros::Time(12.25), single);
+  }
+  const ScanLog log = readLog(path);
+  EXPECT_TRUE(log.report.problems.empty()) << log.report.problems.front();
+  ASSERT_EQ(log.entries.size(), 1u);
+  const LaserScan &scan = log.entries[0].scan;
+  EXPECT_DOUBLE_EQ(scan.stamp, 12.25);
+  ASSERT_EQ(scan.ranges.size(), 3u);
+  EXPECT_FLOAT_EQ(scan.ranges[0], 1.2f);
+  EXPECT_TRUE(std::isnan(scan.ranges[1]));
+  EXPECT_FLOAT_EQ(scan.ranges[2], 3.0f);
+  // Named, it is read beside a LaserScan topic; unnamed, the LaserScan topic is.
+  EXPECT_FLOAT_EQ(readLog(both).entries[0].scan.ranges[0], 1.0f);
+  LogReadOptions options;
+  options.scan_topic = "/horizontal_laser_2d";
+  EXPECT_FLOAT_EQ(readLog(both, options).entries[0].scan.ranges[0], 1.2f);
+  options.scan_topic = "/front";
+  try {
+    readLog(both, options);
+    FAIL();
+  } catch (const ReadError &error) {
+    EXPECT_NE(std::string(error.what()).find("it has /scan, /horizontal_laser_2d"), std::string::npos) << error.what();
+  }
 }
 #endif
 

@@ -82,6 +82,10 @@ ScanMessage scanMessageOf(const LaserScan &scan) {
   return message;
 }
 
+float firstEcho(const std::vector<float> &echoes) {
+  return echoes.empty() ? std::numeric_limits<float>::quiet_NaN() : echoes.front();
+}
+
 std::string frameName(std::string name) { return name.empty() || name[0] != '/' ? name : name.substr(1); }
 
 double yawOfQuaternion(double x, double y, double z, double w) {

@@ -36,6 +36,10 @@ bool addScan(const ScanMessage &message, double max_range, std::size_t max_beams
 /// range_max the scan's or, without one, just above its farthest return.
 ScanMessage scanMessageOf(const LaserScan &scan);
 
+/// A beam's range from its echoes (sensor_msgs' LaserEcho): the first, as the strongest or
+/// nearest return a multi-echo LIDAR gives first; NaN (no return) without one.
+float firstEcho(const std::vector<float> &echoes);
+
 /// A frame's name without a leading '/' (ROS 1's tf accepted both).
 std::string frameName(std::string name);
 

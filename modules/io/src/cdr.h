@@ -66,6 +66,14 @@ class CdrReader {
     return text;
   }
 
+  /// The count of a sequence whose elements take at least `smallest` bytes each, checked
+  /// against the bytes left.
+  std::uint32_t readCount(std::size_t smallest) {
+    const std::uint32_t count = read<std::uint32_t>();
+    if (std::size_t{count} * smallest > size_ - at_) throw std::runtime_error("a sequence longer than the message");
+    return count;
+  }
+
   /// A sequence of `T`: its count checked against the bytes left before it is allocated.
   template <typename T>
   std::vector<T> readSequence() {

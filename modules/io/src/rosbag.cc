@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -18,6 +20,7 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/MultiEchoLaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 #include <boost/make_shared.hpp>
 #endif
@@ -32,6 +35,9 @@ namespace contour_reg::io {
 
 namespace {
 
+const std::string kLaserScanType = "sensor_msgs/LaserScan";
+const std::string kMultiEchoScanType = "sensor_msgs/MultiEchoLaserScan";
+
 std::vector<std::string> topicsOfType(const rosbag::Bag &bag, const std::string &type) {
   std::vector<std::string> topics;
   rosbag::View all(bag);
@@ -41,17 +47,21 @@ std::vector<std::string> topicsOfType(const rosbag::Bag &bag, const std::string 
   return topics;
 }
 
-// The topic the options name, or the bag's first of `type` when they name none. A named topic
-// the bag does not carry with that type is an error, so that a mistyped name is not read as a
-// bag without those messages.
-std::string topicToRead(const rosbag::Bag &bag, const std::string &path, const std::string &named,
-                        const std::string &type) {
-  const std::vector<std::string> topics = topicsOfType(bag, type);
-  if (named.empty()) return topics.empty() ? std::string() : topics.front();
-  if (std::find(topics.begin(), topics.end(), named) != topics.end()) return named;
-  std::string carried;
-  for (const std::string &topic : topics) carried += (carried.empty() ? "" : ", ") + topic;
-  throw ReadError(path + ": no " + type + " topic " + named + " in the bag (" +
+// The topic the options name, or the bag's first of the first of `types` it carries when they
+// name none, with its type. A named topic the bag does not carry with one of those types is an
+// error, so that a mistyped name is not read as a bag without those messages.
+std::pair<std::string, std::string> topicToRead(const rosbag::Bag &bag, const std::string &path,
+                                                const std::string &named, const std::vector<std::string> &types) {
+  std::string carried, wanted;
+  for (const std::string &type : types) {
+    const std::vector<std::string> topics = topicsOfType(bag, type);
+    if (named.empty() && !topics.empty()) return {topics.front(), type};
+    if (!named.empty() && std::find(topics.begin(), topics.end(), named) != topics.end()) return {named, type};
+    for (const std::string &topic : topics) carried += (carried.empty() ? "" : ", ") + topic;
+    wanted += (wanted.empty() ? "" : " or ") + type;
+  }
+  if (named.empty()) return {};
+  throw ReadError(path + ": no " + wanted + " topic " + named + " in the bag (" +
                   (carried.empty() ? "it has none" : "it has " + carried) + ")");
 }
 
@@ -64,8 +74,10 @@ geometry_msgs::Quaternion quaternionOf(double yaw) {
 
 double yawOf(const geometry_msgs::Quaternion &q) { return detail::yawOfQuaternion(q.x, q.y, q.z, q.w); }
 
-// The message's fields, its ranges moved.
-detail::ScanMessage scanMessage(sensor_msgs::LaserScan &message) {
+// The message's fields, its ranges moved: a sensor_msgs/LaserScan, or a MultiEchoLaserScan
+// with each beam's first echo as its range.
+template <typename Message>
+detail::ScanMessage scanMessage(Message &message) {
   detail::ScanMessage scan;
   scan.stamp = message.header.stamp.toSec();
   scan.frame_id = message.header.frame_id;
@@ -76,7 +88,12 @@ detail::ScanMessage scanMessage(sensor_msgs::LaserScan &message) {
   scan.scan_time = message.scan_time;
   scan.range_min = message.range_min;
   scan.range_max = message.range_max;
-  scan.ranges = std::move(message.ranges);
+  if constexpr (std::is_same_v<Message, sensor_msgs::LaserScan>) {
+    scan.ranges = std::move(message.ranges);
+  } else {
+    scan.ranges.reserve(message.ranges.size());
+    for (const sensor_msgs::LaserEcho &beam : message.ranges) scan.ranges.push_back(detail::firstEcho(beam.echoes));
+  }
   return scan;
 }
 
@@ -103,6 +120,24 @@ bool laserScanFits(const std::vector<std::uint8_t> &bytes) {
   for (int array = 0; array < 2; ++array) {  // ranges, intensities: float32 each
     if (!lengthAt(bytes, at, length) || 4 * length > bytes.size() - at) return false;
     at += 4 * length;
+  }
+  return true;
+}
+
+// Whether `bytes` (a serialized sensor_msgs/MultiEchoLaserScan) holds the echoes of each beam
+// it declares, for the ranges and the intensities.
+bool multiEchoScanFits(const std::vector<std::uint8_t> &bytes) {
+  std::size_t at = 12;  // the header's sequence number and stamp
+  std::uint64_t length = 0;
+  if (!lengthAt(bytes, at, length) || length > bytes.size() - at) return false;  // frame_id
+  at += length + 7 * 4;                      // angles, times and range limits: seven float32
+  for (int array = 0; array < 2; ++array) {  // ranges, intensities: a float32 array per beam
+    std::uint64_t beams = 0;
+    if (!lengthAt(bytes, at, beams) || 4 * beams > bytes.size() - at) return false;
+    for (std::uint64_t beam = 0; beam < beams; ++beam) {
+      if (!lengthAt(bytes, at, length) || 4 * length > bytes.size() - at) return false;
+      at += 4 * length;
+    }
   }
   return true;
 }
@@ -144,9 +179,11 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
   if (!check.fatal.empty()) throw ReadError(path + ": not a readable ROS 1 bag: " + check.fatal);
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
-    const std::string scan_topic = topicToRead(bag, path, options.scan_topic, "sensor_msgs/LaserScan");
-    const std::string odometry_topic = topicToRead(bag, path, options.odometry_topic, "nav_msgs/Odometry");
-    if (scan_topic.empty()) throw ReadError(path + ": no sensor_msgs/LaserScan topic in the bag");
+    const auto [scan_topic, scan_type] =
+        topicToRead(bag, path, options.scan_topic, {kLaserScanType, kMultiEchoScanType});
+    const std::string odometry_topic = topicToRead(bag, path, options.odometry_topic, {"nav_msgs/Odometry"}).first;
+    if (scan_topic.empty())
+      throw ReadError(path + ": no " + kLaserScanType + " or " + kMultiEchoScanType + " topic in the bag");
     std::vector<std::string> topics{scan_topic};
     if (!odometry_topic.empty()) topics.push_back(odometry_topic);
     const std::vector<std::string> tf_topics = topicsOfType(bag, "tf2_msgs/TFMessage");
@@ -175,14 +212,18 @@ ScanLog readRosbag(const std::string &path, const RosbagOptions &options) {
       }
       try {
         if (message.getTopic() == scan_topic) {
-          auto scan = decoded<sensor_msgs::LaserScan>(message, laserScanFits);
-          if (!scan) {
-            log.report.add(where, index, "not a sensor_msgs/LaserScan");
+          std::optional<detail::ScanMessage> read;
+          if (scan_type == kLaserScanType) {
+            if (auto scan = decoded<sensor_msgs::LaserScan>(message, laserScanFits)) read = scanMessage(*scan);
+          } else if (auto scan = decoded<sensor_msgs::MultiEchoLaserScan>(message, multiEchoScanFits)) {
+            read = scanMessage(*scan);
+          }
+          if (!read) {
+            log.report.add(where, index, "not a " + scan_type);
           } else {
             const bool first = log.entries.empty();
-            const detail::ScanMessage read = scanMessage(*scan);
-            if (detail::addScan(read, options.max_range, options.max_beams, where, index, log) && first)
-              scan_frame = detail::frameName(read.frame_id);
+            if (detail::addScan(*read, options.max_range, options.max_beams, where, index, log) && first)
+              scan_frame = detail::frameName(read->frame_id);
           }
         } else if (message.getTopic() != odometry_topic) {
           if (auto transforms = decoded<tf2_msgs::TFMessage>(message, transformsFit))

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -24,6 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kScanType[] = "sensor_msgs/msg/LaserScan";
+constexpr char kMultiEchoScanType[] = "sensor_msgs/msg/MultiEchoLaserScan";
 constexpr char kOdometryType[] = "nav_msgs/msg/Odometry";
 constexpr char kTransformsType[] = "tf2_msgs/msg/TFMessage";
 // No message of the types read decompresses to more (a scan of LogReadOptions::max_beams
@@ -75,7 +77,8 @@ double stampOf(detail::CdrReader &in) {
   return seconds + 1e-9 * nanoseconds;
 }
 
-detail::ScanMessage decodeScan(detail::CdrReader &in) {
+// A LaserScan or MultiEchoLaserScan up to its ranges.
+detail::ScanMessage decodeScanFields(detail::CdrReader &in) {
   detail::ScanMessage scan;
   scan.stamp = stampOf(in);
   scan.frame_id = in.readString();
@@ -86,7 +89,19 @@ detail::ScanMessage decodeScan(detail::CdrReader &in) {
   scan.scan_time = in.read<float>();
   scan.range_min = in.read<float>();
   scan.range_max = in.read<float>();
-  scan.ranges = in.readSequence<float>();
+  return scan;
+}
+
+// A sensor_msgs/msg/LaserScan, or a MultiEchoLaserScan with each beam's first echo as its range
+// (no return where a beam has none).
+detail::ScanMessage decodeScan(detail::CdrReader &in, const std::string &type) {
+  detail::ScanMessage scan = decodeScanFields(in);
+  if (type != kMultiEchoScanType) {
+    scan.ranges = in.readSequence<float>();
+    return scan;
+  }
+  scan.ranges.resize(in.readCount(4));  // each beam's echoes: a count and its float32s
+  for (float &range : scan.ranges) range = detail::firstEcho(in.readSequence<float>());
   return scan;
 }
 
@@ -159,7 +174,7 @@ class BagContents {
   void topic(const std::string &name, const std::string &type) {
     if (std::find(topics_.begin(), topics_.end(), std::make_pair(name, type)) == topics_.end())
       topics_.emplace_back(name, type);
-    choose(name, type, kScanType, options_.scan_topic, scan_topic_);
+    chooseScan(name, type);
     choose(name, type, kOdometryType, options_.odometry_topic, odometry_topic_);
   }
 
@@ -168,6 +183,7 @@ class BagContents {
                std::size_t size) {
     const bool is_scan = name == scan_topic_, is_odometry = name == odometry_topic_;
     if ((!is_scan && !is_odometry && type != kTransformsType) || name.empty()) return;
+    scan_met_ = scan_met_ || is_scan;
     ++index_;
     ++log_.report.lines;
     const std::string where = file + " (" + name + ")";
@@ -184,7 +200,7 @@ class BagContents {
     try {
       detail::CdrReader in(bytes, size);
       if (is_scan) {
-        const detail::ScanMessage scan = decodeScan(in);
+        const detail::ScanMessage scan = decodeScan(in, type);
         const bool first = log_.entries.empty();
         if (detail::addScan(scan, options_.max_range, options_.max_beams, where, index_, log_) && first)
           scan_frame_ = detail::frameName(scan.frame_id);
@@ -220,9 +236,10 @@ class BagContents {
   }
 
   ScanLog finish() {
-    requireNamed(options_.scan_topic, scan_topic_, kScanType);
-    requireNamed(options_.odometry_topic, odometry_topic_, kOdometryType);
-    if (scan_topic_.empty()) throw ReadError(path_ + ": no " + std::string(kScanType) + " topic in the bag");
+    requireNamed(options_.scan_topic, scan_topic_, {kScanType, kMultiEchoScanType});
+    requireNamed(options_.odometry_topic, odometry_topic_, {kOdometryType});
+    if (scan_topic_.empty())
+      throw ReadError(path_ + ": no " + kScanType + " or " + kMultiEchoScanType + " topic in the bag");
     detail::finishBagLog(path_, tree_, scan_frame_, base_frame_, std::move(odometry_), log_);
     return std::move(log_);
   }
@@ -232,14 +249,29 @@ class BagContents {
                      std::string &chosen) {
     if (type == wanted && chosen.empty() && (named.empty() || name == named)) chosen = name;
   }
-  // A topic the options name that the bag does not carry with its type is an error, so that a
-  // mistyped name is not read as a bag without those messages.
-  void requireNamed(const std::string &named, const std::string &chosen, const char *type) const {
+  // The scan topic: the one the options name, else the first LaserScan topic, else the first
+  // MultiEchoLaserScan topic (a LaserScan topic met before any scan takes its place).
+  void chooseScan(const std::string &name, const std::string &type) {
+    if (type != kScanType && type != kMultiEchoScanType) return;
+    const bool take = !options_.scan_topic.empty()
+                          ? scan_topic_.empty() && name == options_.scan_topic
+                          : scan_topic_.empty() || (type == kScanType && scan_type_ != kScanType && !scan_met_);
+    if (!take) return;
+    scan_topic_ = name;
+    scan_type_ = type;
+  }
+  // A topic the options name that the bag does not carry with one of `types` is an error, so
+  // that a mistyped name is not read as a bag without those messages.
+  void requireNamed(const std::string &named, const std::string &chosen,
+                    std::initializer_list<const char *> types) const {
     if (named.empty() || !chosen.empty()) return;
-    std::string carried;
-    for (const auto &[name, its_type] : topics_)
-      if (its_type == type) carried += (carried.empty() ? "" : ", ") + name;
-    throw ReadError(path_ + ": no " + type + " topic " + named + " in the bag (" +
+    std::string carried, wanted;
+    for (const char *type : types) {
+      wanted += (wanted.empty() ? "" : " or ") + std::string(type);
+      for (const auto &[name, its_type] : topics_)
+        if (its_type == type) carried += (carried.empty() ? "" : ", ") + name;
+    }
+    throw ReadError(path_ + ": no " + wanted + " topic " + named + " in the bag (" +
                     (carried.empty() ? "it has none" : "it has " + carried) + ")");
   }
 
@@ -250,6 +282,8 @@ class BagContents {
   detail::TransformTree tree_;
   std::vector<std::pair<std::string, std::string>> topics_;  // (name, type), as met
   std::string scan_topic_, odometry_topic_;
+  std::string scan_type_;                   // the scan topic's message type
+  bool scan_met_ = false;                   // a message of the scan topic has been read
   std::string scan_frame_, base_frame_;     // of the first scan and the first odometry message
   std::size_t index_ = 0;                   // messages of the topics read, counted from 1
   std::vector<std::uint8_t> decompressed_;  // a compressed message's bytes

@@ -1,7 +1,8 @@
 #pragma once
 /// @file rosbag.h
-/// ROS 1 bags (format 2.0, plain, BZ2 or LZ4 chunks) with sensor_msgs/LaserScan,
-/// nav_msgs/Odometry and tf2_msgs/TFMessage messages, read through Debian's rosbag_storage library.
+/// ROS 1 bags (format 2.0, plain, BZ2 or LZ4 chunks) with sensor_msgs/LaserScan (or
+/// MultiEchoLaserScan, each beam's first echo its range), nav_msgs/Odometry and
+/// tf2_msgs/TFMessage messages, read through Debian's rosbag_storage library.
 ///
 /// A scan's stamp is its header stamp; its odometry is the Odometry pose interpolated at
 /// that stamp or, in a bag without an Odometry topic, the pose tf gives the robot in "odom"
@@ -20,7 +21,7 @@
 namespace contour_reg::io {
 
 struct RosbagOptions {
-  std::string scan_topic;      ///< "": the first topic carrying sensor_msgs/LaserScan
+  std::string scan_topic;      ///< "": the first topic carrying sensor_msgs/LaserScan, else MultiEchoLaserScan
   std::string odometry_topic;  ///< "": the first topic carrying nav_msgs/Odometry
   double max_range = 40.0;     ///< m
   std::size_t max_beams = 100000;

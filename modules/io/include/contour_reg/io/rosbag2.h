@@ -3,9 +3,9 @@
 /// ROS 2 bags in either of rosbag2's storages, sqlite3 (.db3, the default through ROS 2
 /// Humble) and MCAP (.mcap, from Iron on; chunks uncompressed, LZ4 or Zstandard): a bag's
 /// folder (its metadata.yaml names the storage files, read in its order) or one storage
-/// file, with sensor_msgs/msg/LaserScan, nav_msgs/msg/Odometry and tf2_msgs/msg/TFMessage
-/// messages in CDR, read with SQLite, zstd and lz4 and no ROS installation. Bags rosbag2
-/// compressed with zstd are read too: file by file (each storage file one zstd frame, named
+/// file, with sensor_msgs/msg/LaserScan (or MultiEchoLaserScan, each beam's first echo its
+/// range), nav_msgs/msg/Odometry and tf2_msgs/msg/TFMessage messages in CDR, read with SQLite, zstd and lz4 and no ROS
+/// installation. Bags rosbag2 compressed with zstd are read too: file by file (each storage file one zstd frame, named
 /// *.db3.zstd or *.mcap.zstd, decompressed into a temporary file) or message by message (each
 /// message's bytes a zstd frame); each is told by the zstd magic number of its bytes.
 ///
