@@ -289,6 +289,11 @@ TEST(Rosbag2, AWrittenBagReadsBackWithBeamTimingOdometryAndMounting) {
   EXPECT_NEAR(read.laser_pose->yaw, 0.25, 1e-12);
 }
 
+// A bag folder's metadata.yaml: rosbag2_bagfile_information with `fields` (lines indented by two).
+void writeMetadata(const std::filesystem::path &folder, const std::string &fields) {
+  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n" << fields;
+}
+
 TEST(Rosbag2, ABagFolderIsReadInTheOrderOfItsMetadata) {
   test::TempDir dir;
   const auto folder = dir.path() / "run";
@@ -297,12 +302,12 @@ TEST(Rosbag2, ABagFolderIsReadInTheOrderOfItsMetadata) {
   for (LogEntry &entry : second.entries) entry.scan.stamp += 10.0;
   writeRosbag2((folder / "b_0.db3").string(), first);
   writeRosbag2((folder / "a_1.db3").string(), second);
-  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
-                                                        "  version: 5\n"
-                                                        "  storage_identifier: sqlite3\n"
-                                                        "  relative_file_paths:\n"
-                                                        "    - b_0.db3\n"
-                                                        "    - a_1.db3\n";
+  writeMetadata(folder,
+                "  version: 5\n"
+                "  storage_identifier: sqlite3\n"
+                "  relative_file_paths:\n"
+                "    - b_0.db3\n"
+                "    - a_1.db3\n");
   const ScanLog log = readLog(folder.string());
   ASSERT_EQ(log.entries.size(), 6u);
   EXPECT_EQ(log.report.reordered, 0u);
@@ -431,9 +436,9 @@ TEST(Rosbag2, AWrittenMcapBagReadsBackAsTheSqliteOne) {
   const auto folder = dir.path() / "run";
   std::filesystem::create_directories(folder);
   std::filesystem::copy_file(dir.file("timed.mcap"), folder / "run_0.mcap");
-  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
-                                                        "  storage_identifier: mcap\n"
-                                                        "  relative_file_paths: [run_0.mcap]\n";
+  writeMetadata(folder,
+                "  storage_identifier: mcap\n"
+                "  relative_file_paths: [run_0.mcap]\n");
   EXPECT_EQ(readLog(folder.string()).entries.size(), written.entries.size());
 }
 
@@ -750,15 +755,9 @@ TEST(Rosbag2, ABagCompressedFileByFileReadsAsTheBagItHolds) {
     std::filesystem::create_directories(folder);
     const std::string compressed = zstdOf(test::readBytes(dir.file("run_0." + storage)));
     std::ofstream((folder / ("run_0." + storage + ".zstd")).string(), std::ios::binary) << compressed;
-    std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
-                                                          "  storage_identifier: "
-                                                       << (storage == "db3" ? "sqlite3" : "mcap")
-                                                       << "\n"
-                                                          "  relative_file_paths: [run_0."
-                                                       << storage
-                                                       << ".zstd]\n"
-                                                          "  compression_format: zstd\n"
-                                                          "  compression_mode: FILE\n";
+    writeMetadata(folder, "  storage_identifier: " + std::string(storage == "db3" ? "sqlite3" : "mcap") +
+                              "\n  relative_file_paths: [run_0." + storage +
+                              ".zstd]\n  compression_format: zstd\n  compression_mode: FILE\n");
     test::expectTimedLogReadBack(readLog(folder.string()), written);
     // The compressed file alone reads the same.
     test::expectTimedLogReadBack(readLog((folder / ("run_0." + storage + ".zstd")).string()), written);
@@ -806,11 +805,11 @@ TEST(Rosbag2, ABagOfAnotherCompressionIsAnErrorNamingIt) {
   const auto folder = dir.path() / "run";
   std::filesystem::create_directories(folder);
   writeRosbag2((folder / "run_0.db3").string(), timedLog());
-  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
-                                                        "  storage_identifier: sqlite3\n"
-                                                        "  relative_file_paths: [run_0.db3]\n"
-                                                        "  compression_format: brotli\n"
-                                                        "  compression_mode: MESSAGE\n";
+  writeMetadata(folder,
+                "  storage_identifier: sqlite3\n"
+                "  relative_file_paths: [run_0.db3]\n"
+                "  compression_format: brotli\n"
+                "  compression_mode: MESSAGE\n");
   try {
     readLog(folder.string());
     FAIL();
@@ -818,11 +817,11 @@ TEST(Rosbag2, ABagOfAnotherCompressionIsAnErrorNamingIt) {
     EXPECT_NE(std::string(error.what()).find("brotli"), std::string::npos) << error.what();
   }
   // An uncompressed bag's metadata names no compression.
-  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
-                                                        "  storage_identifier: sqlite3\n"
-                                                        "  relative_file_paths: [run_0.db3]\n"
-                                                        "  compression_format: \"\"\n"
-                                                        "  compression_mode: \"\"\n";
+  writeMetadata(folder,
+                "  storage_identifier: sqlite3\n"
+                "  relative_file_paths: [run_0.db3]\n"
+                "  compression_format: \"\"\n"
+                "  compression_mode: \"\"\n");
   EXPECT_EQ(readLog(folder.string()).entries.size(), 3u);
 }
 
@@ -845,9 +844,9 @@ TEST(Rosbag2, AnotherStorageIsAnErrorNamingIt) {
   test::TempDir dir;
   const auto folder = dir.path() / "run";
   std::filesystem::create_directories(folder);
-  std::ofstream((folder / "metadata.yaml").string()) << "rosbag2_bagfile_information:\n"
-                                                        "  storage_identifier: zarr\n"
-                                                        "  relative_file_paths: [run_0.zarr]\n";
+  writeMetadata(folder,
+                "  storage_identifier: zarr\n"
+                "  relative_file_paths: [run_0.zarr]\n");
   try {
     readLog(folder.string());
     FAIL();

@@ -189,7 +189,7 @@ class BagContents {
     const std::string where = file + " (" + name + ")";
     if (detail::isZstdFrame(bytes, size)) {  // a bag compressed message by message
       try {
-        detail::decompressZstd(bytes, size, kLargestMessage, decompressed_);
+        decompressor_.decompress(bytes, size, kLargestMessage, decompressed_);
       } catch (const std::exception &e) {
         log_.report.add(where, index_, std::string("cannot decompress message: ") + e.what());
         return;
@@ -286,6 +286,7 @@ class BagContents {
   bool scan_met_ = false;                   // a message of the scan topic has been read
   std::string scan_frame_, base_frame_;     // of the first scan and the first odometry message
   std::size_t index_ = 0;                   // messages of the topics read, counted from 1
+  detail::ZstdDecompressor decompressor_;   // for messages compressed on their own
   std::vector<std::uint8_t> decompressed_;  // a compressed message's bytes
 };
 

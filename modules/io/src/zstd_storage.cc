@@ -1,7 +1,6 @@
 #include "zstd_storage.h"
 
 #include <unistd.h>
-#include <zstd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -23,17 +22,6 @@ constexpr char kZstdExtension[] = ".zstd";
 // A file compressed whole decompresses to at most this many times its size, or kSmallestLimit.
 constexpr std::uintmax_t kLargestRatio = 1000;
 constexpr std::uintmax_t kSmallestLimit = std::uintmax_t{64} << 20;
-
-struct ContextDeleter {
-  void operator()(ZSTD_DCtx *context) const { ZSTD_freeDCtx(context); }
-};
-using Context = std::unique_ptr<ZSTD_DCtx, ContextDeleter>;
-
-Context newContext() {
-  Context context(ZSTD_createDCtx());
-  if (!context) throw std::runtime_error("zstd: no decompression context");
-  return context;
-}
 
 // Decompresses `input` into `write(bytes, size)`; `last` is ZSTD_decompressStream's last
 // answer, 0 once a frame has ended and all its bytes are out.
@@ -62,13 +50,17 @@ bool isZstdFile(const std::string &path) {
   return in.read(magic, sizeof magic) && isZstdFrame(reinterpret_cast<const std::uint8_t *>(magic), sizeof magic);
 }
 
-void decompressZstd(const std::uint8_t *data, std::size_t size, std::size_t limit, std::vector<std::uint8_t> &out) {
+ZstdDecompressor::ZstdDecompressor() : context_(ZSTD_createDCtx(), &ZSTD_freeDCtx), buffer_(ZSTD_DStreamOutSize()) {
+  if (!context_) throw std::runtime_error("zstd: no decompression context");
+}
+
+void ZstdDecompressor::decompress(const std::uint8_t *data, std::size_t size, std::size_t limit,
+                                  std::vector<std::uint8_t> &out) {
   out.clear();
-  const Context context = newContext();
-  std::vector<char> buffer(ZSTD_DStreamOutSize());
+  ZSTD_DCtx_reset(context_.get(), ZSTD_reset_session_only);  // whatever the last input left
   ZSTD_inBuffer input{data, size, 0};
   std::size_t last = 0;
-  decompressInto(context.get(), input, buffer, last, [&](const char *bytes, std::size_t count) {
+  decompressInto(context_.get(), input, buffer_, last, [&](const char *bytes, std::size_t count) {
     if (count > limit - out.size())
       throw std::runtime_error("it decompresses to more than " + std::to_string(limit) + " bytes");
     out.insert(out.end(), bytes, bytes + count);
@@ -86,7 +78,8 @@ DecompressedFile::DecompressedFile(const std::string &from) {
   path_ = pattern;
   try {
     std::ofstream out(path_, std::ios::binary | std::ios::trunc);
-    const Context context = newContext();
+    const std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx *)> context(ZSTD_createDCtx(), &ZSTD_freeDCtx);
+    if (!context) throw std::runtime_error("zstd: no decompression context");
     std::vector<char> chunk(ZSTD_DStreamInSize()), buffer(ZSTD_DStreamOutSize());
     std::size_t last = 0;
     // A bag's messages do not compress much further: a file that decompresses to far more than

@@ -5,8 +5,11 @@
 // on their own. Both are zstd frames, told apart from a storage file or a CDR message by
 // the frame's magic number. Internal to the io module.
 
+#include <zstd.h>
+
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,9 +22,19 @@ bool isZstdFrame(const std::uint8_t *data, std::size_t size);
 /// Whether the file at `path` begins with a zstd frame (false when it cannot be read).
 bool isZstdFile(const std::string &path);
 
-/// The zstd frames of `data` decompressed into `out`; throws std::runtime_error saying why
-/// when they do not decompress, end inside a frame or hold more than `limit` bytes.
-void decompressZstd(const std::uint8_t *data, std::size_t size, std::size_t limit, std::vector<std::uint8_t> &out);
+/// Decompresses zstd frames one input at a time (a bag's messages, each compressed on its own),
+/// keeping its context and buffer from one input to the next.
+class ZstdDecompressor {
+ public:
+  ZstdDecompressor();
+  /// The zstd frames of `data` decompressed into `out`; throws std::runtime_error saying why
+  /// when they do not decompress, end inside a frame or hold more than `limit` bytes.
+  void decompress(const std::uint8_t *data, std::size_t size, std::size_t limit, std::vector<std::uint8_t> &out);
+
+ private:
+  std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx *)> context_;
+  std::vector<char> buffer_;
+};
 
 /// A storage file compressed in file mode: `from` decompressed into a new temporary file,
 /// removed again when this goes out of scope. Throws ReadError naming `from` when it is not a
